@@ -1,0 +1,133 @@
+#include "config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace nerv {
+
+YAML::Node loadConfigFile(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw ConfigError("config file " + path + " cannot be read");
+  try {
+    YAML::Node node = YAML::LoadFile(path);
+    if (node.IsNull()) return YAML::Node(YAML::NodeType::Map);
+    if (!node.IsMap()) throw ConfigError("config file " + path + " is not a YAML map");
+    return node;
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config file " + path + ": " + e.msg + " at line " +
+                      std::to_string(e.mark.line + 1));
+  }
+}
+
+ConfigSection::ConfigSection(YAML::Node node, std::string path)
+    : node_(node), path_(std::move(path)) {
+  if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
+    throw ConfigError("config key '" + path_ + "' must be a map");
+}
+
+std::string ConfigSection::where(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+bool ConfigSection::has(const std::string& key) const {
+  return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+}
+
+YAML::Node ConfigSection::scalar(const std::string& key) {
+  known_.insert(key);
+  if (!has(key)) return YAML::Node();
+  YAML::Node v = node_[key];
+  if (!v.IsScalar()) throw ConfigError("config key '" + where(key) + "' must be a single value");
+  return v;
+}
+
+void ConfigSection::get(const std::string& key, double& value, double lo, double hi) {
+  YAML::Node v = scalar(key);
+  if (!v.IsDefined()) return;
+  double parsed;
+  try {
+    parsed = v.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError("config key '" + where(key) + "' must be a number, got '" +
+                      v.Scalar() + "'");
+  }
+  if (!std::isfinite(parsed) || parsed < lo || parsed > hi) {
+    std::ostringstream msg;
+    msg << "config key '" << where(key) << "' = " << v.Scalar() << " is outside [" << lo << ", "
+        << hi << "]";
+    throw ConfigError(msg.str());
+  }
+  value = parsed;
+}
+
+void ConfigSection::get(const std::string& key, float& value, double lo, double hi) {
+  double d = value;
+  get(key, d, lo, hi);
+  value = static_cast<float>(d);
+}
+
+void ConfigSection::get(const std::string& key, int& value, int lo, int hi) {
+  YAML::Node v = scalar(key);
+  if (!v.IsDefined()) return;
+  long long parsed;
+  try {
+    parsed = v.as<long long>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError("config key '" + where(key) + "' must be an integer, got '" +
+                      v.Scalar() + "'");
+  }
+  if (parsed < lo || parsed > hi) {
+    std::ostringstream msg;
+    msg << "config key '" << where(key) << "' = " << parsed << " is outside [" << lo << ", " << hi
+        << "]";
+    throw ConfigError(msg.str());
+  }
+  value = static_cast<int>(parsed);
+}
+
+void ConfigSection::get(const std::string& key, bool& value) {
+  YAML::Node v = scalar(key);
+  if (!v.IsDefined()) return;
+  try {
+    value = v.as<bool>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError("config key '" + where(key) + "' must be true or false, got '" +
+                      v.Scalar() + "'");
+  }
+}
+
+void ConfigSection::get(const std::string& key, std::string& value,
+                        std::initializer_list<const char*> allowed) {
+  YAML::Node v = scalar(key);
+  if (!v.IsDefined()) return;
+  const std::string s = v.Scalar();
+  if (allowed.size() > 0) {
+    bool ok = false;
+    std::string list;
+    for (const char* a : allowed) {
+      ok = ok || s == a;
+      list += (list.empty() ? "" : ", ") + std::string(a);
+    }
+    if (!ok)
+      throw ConfigError("config key '" + where(key) + "' = '" + s + "' is not one of: " + list);
+  }
+  value = s;
+}
+
+ConfigSection ConfigSection::section(const std::string& key) {
+  known_.insert(key);
+  return ConfigSection(has(key) ? node_[key] : YAML::Node(), where(key));
+}
+
+void ConfigSection::allow(const std::string& key) { known_.insert(key); }
+
+void ConfigSection::finish() const {
+  if (!node_.IsMap()) return;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    if (!known_.count(key)) throw ConfigError("unknown config key '" + where(key) + "'");
+  }
+}
+
+}  // namespace nerv

@@ -1,0 +1,148 @@
+#include "message_check.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "message_convert.hpp"
+
+namespace nerv {
+namespace {
+
+Problem problem(const char* counter, const std::string& message) { return {counter, message}; }
+
+bool finite(std::initializer_list<double> values) {
+  for (double v : values)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+Problem checkSize(int width, int height, const Limits& limits, const std::string& what) {
+  if (width <= 0 || height <= 0 || width > limits.max_width || height > limits.max_height) {
+    std::ostringstream m;
+    m << what << " size " << width << "x" << height << " is outside 1x1.." << limits.max_width
+      << "x" << limits.max_height;
+    return problem("bad_size", m.str());
+  }
+  return {};
+}
+
+}  // namespace
+
+Problem checkCalibration(const stereo_calibration_t& calib, const Limits& limits) {
+  if (Problem p = checkSize(calib.width, calib.height, limits, "calibration")) return p;
+  if (const std::string why = toCamera(calib).problem(); !why.empty())
+    return problem("bad_calibration", "calibration: " + why);
+  if (!calib.rectified) {
+    for (double v : calib.left_K)
+      if (!std::isfinite(v)) return problem("bad_calibration", "calibration: left_K not finite");
+    for (double v : calib.right_K)
+      if (!std::isfinite(v)) return problem("bad_calibration", "calibration: right_K not finite");
+  }
+  return {};
+}
+
+Problem checkImage(const image_t& image, const Limits& limits, const char* which) {
+  if (image.size < 0 || static_cast<size_t>(image.size) != image.data.size())
+    return problem("bad_size", std::string(which) + " image: size field " +
+                                   std::to_string(image.size) + " != " +
+                                   std::to_string(image.data.size()) + " bytes");
+  if (Problem p = checkSize(image.width, image.height, limits, std::string(which) + " image"))
+    return p;
+  if (image.encoding == "gray8" || image.encoding == "bgr8") {
+    const int channels = image.encoding == "gray8" ? 1 : 3;
+    const long long expected = 1LL * image.width * image.height * channels;
+    if (image.channels != channels || image.size != expected)
+      return problem("bad_size", std::string(which) + " image: " + image.encoding + " " +
+                                     std::to_string(image.width) + "x" +
+                                     std::to_string(image.height) + " needs " +
+                                     std::to_string(expected) + " bytes, has " +
+                                     std::to_string(image.size));
+  } else if (image.encoding != "png" && image.encoding != "jpeg") {
+    return problem("bad_encoding",
+                   std::string(which) + " image: unknown encoding '" + image.encoding + "'");
+  }
+  return {};
+}
+
+Problem checkStereoFrame(const stereo_frame_t& msg, const Limits& limits) {
+  if (Problem p = checkCalibration(msg.calib, limits)) return p;
+  if (Problem p = checkImage(msg.left, limits, "left")) return p;
+  if (Problem p = checkImage(msg.right, limits, "right")) return p;
+  if (msg.left.width != msg.right.width || msg.left.height != msg.right.height)
+    return problem("size_mismatch", "left " + std::to_string(msg.left.width) + "x" +
+                                        std::to_string(msg.left.height) + " and right " +
+                                        std::to_string(msg.right.width) + "x" +
+                                        std::to_string(msg.right.height) + " differ");
+  if (msg.left.width != msg.calib.width || msg.left.height != msg.calib.height)
+    return problem("size_mismatch", "image " + std::to_string(msg.left.width) + "x" +
+                                        std::to_string(msg.left.height) +
+                                        " does not match calibration " +
+                                        std::to_string(msg.calib.width) + "x" +
+                                        std::to_string(msg.calib.height));
+  return {};
+}
+
+Problem checkDisparity(const disparity_t& msg, const Limits& limits) {
+  if (Problem p = checkCalibration(msg.calib, limits)) return p;
+  if (Problem p = checkSize(msg.width, msg.height, limits, "disparity")) return p;
+  if (msg.width != msg.calib.width || msg.height != msg.calib.height)
+    return problem("size_mismatch", "disparity " + std::to_string(msg.width) + "x" +
+                                        std::to_string(msg.height) +
+                                        " does not match calibration " +
+                                        std::to_string(msg.calib.width) + "x" +
+                                        std::to_string(msg.calib.height));
+  if (!finite({msg.scale}) || msg.scale <= 0)
+    return problem("bad_value", "disparity scale " + std::to_string(msg.scale) + " is not positive");
+  if (msg.size < 0 || static_cast<size_t>(msg.size) != msg.data.size())
+    return problem("bad_size", "disparity size field " + std::to_string(msg.size) + " != " +
+                                   std::to_string(msg.data.size()) + " bytes");
+  if (msg.encoding == "u16le") {
+    if (msg.size != 2LL * msg.width * msg.height)
+      return problem("bad_size", "u16le disparity needs " +
+                                     std::to_string(2LL * msg.width * msg.height) +
+                                     " bytes, has " + std::to_string(msg.size));
+  } else if (msg.encoding != "png16") {
+    return problem("bad_encoding", "disparity: unknown encoding '" + msg.encoding + "'");
+  }
+  if (msg.confidence_size < 0 || static_cast<size_t>(msg.confidence_size) != msg.confidence.size() ||
+      (msg.confidence_size != 0 && msg.confidence_size != msg.width * msg.height))
+    return problem("bad_size", "confidence size " + std::to_string(msg.confidence_size) +
+                                   " is neither 0 nor width*height");
+  return {};
+}
+
+Problem checkStixels(const stixels_t& msg, const Limits& limits) {
+  if (msg.num_stixels < 0 || static_cast<size_t>(msg.num_stixels) != msg.stixels.size() ||
+      msg.num_rois < 0 || static_cast<size_t>(msg.num_rois) != msg.rois.size())
+    return problem("bad_size", "stixels: counts do not match arrays");
+  const auto& g = msg.ground;
+  if (!finite({g.vd_slope, g.vd_intercept, g.horizon_row, g.pitch_deg, g.roll_deg, g.height_m}))
+    return problem("bad_value", "stixels: ground model has non-finite numbers");
+  for (const auto& r : msg.rois) {
+    if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.disparity}))
+      return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has non-finite numbers");
+    if (r.w <= 0 || r.h <= 0 || r.w > limits.max_width || r.h > limits.max_height)
+      return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has box " +
+                                      std::to_string(r.w) + "x" + std::to_string(r.h));
+  }
+  return {};
+}
+
+Problem checkSurfaceNormals(const surface_normals_t& msg) {
+  if (msg.num_rois < 0 || static_cast<size_t>(msg.num_rois) != msg.rois.size())
+    return problem("bad_size", "surface normals: num_rois does not match the array");
+  for (const auto& s : msg.rois)
+    if (!finite({s.density, s.ground_fraction, s.object_fraction, s.error_fraction, s.normal_x,
+                 s.normal_y, s.normal_z, s.pitch_deg, s.yaw_deg, s.tilt_from_ground_deg}))
+      return problem("bad_value",
+                     "surface normals: roi " + std::to_string(s.roi_id) + " has non-finite numbers");
+  return {};
+}
+
+Problem checkExtrinsics(const extrinsics_t& msg) {
+  if (!finite({msg.pitch_deg, msg.roll_deg, msg.height_m}))
+    return problem("bad_value", "extrinsics: pitch/roll/height not finite");
+  return {};
+}
+
+}  // namespace nerv
