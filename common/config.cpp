@@ -34,17 +34,18 @@ bool ConfigSection::has(const std::string& key) const {
   return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
 }
 
-YAML::Node ConfigSection::scalar(const std::string& key) {
+std::optional<YAML::Node> ConfigSection::scalar(const std::string& key) {
   known_.insert(key);
-  if (!has(key)) return YAML::Node();
+  if (!has(key)) return std::nullopt;
   YAML::Node v = node_[key];
   if (!v.IsScalar()) throw ConfigError("config key '" + where(key) + "' must be a single value");
   return v;
 }
 
 void ConfigSection::get(const std::string& key, double& value, double lo, double hi) {
-  YAML::Node v = scalar(key);
-  if (!v.IsDefined()) return;
+  const std::optional<YAML::Node> found = scalar(key);
+  if (!found) return;
+  const YAML::Node& v = *found;
   double parsed;
   try {
     parsed = v.as<double>();
@@ -68,8 +69,9 @@ void ConfigSection::get(const std::string& key, float& value, double lo, double 
 }
 
 void ConfigSection::get(const std::string& key, int& value, int lo, int hi) {
-  YAML::Node v = scalar(key);
-  if (!v.IsDefined()) return;
+  const std::optional<YAML::Node> found = scalar(key);
+  if (!found) return;
+  const YAML::Node& v = *found;
   long long parsed;
   try {
     parsed = v.as<long long>();
@@ -87,8 +89,9 @@ void ConfigSection::get(const std::string& key, int& value, int lo, int hi) {
 }
 
 void ConfigSection::get(const std::string& key, bool& value) {
-  YAML::Node v = scalar(key);
-  if (!v.IsDefined()) return;
+  const std::optional<YAML::Node> found = scalar(key);
+  if (!found) return;
+  const YAML::Node& v = *found;
   try {
     value = v.as<bool>();
   } catch (const YAML::Exception&) {
@@ -99,8 +102,9 @@ void ConfigSection::get(const std::string& key, bool& value) {
 
 void ConfigSection::get(const std::string& key, std::string& value,
                         std::initializer_list<const char*> allowed) {
-  YAML::Node v = scalar(key);
-  if (!v.IsDefined()) return;
+  const std::optional<YAML::Node> found = scalar(key);
+  if (!found) return;
+  const YAML::Node& v = *found;
   const std::string s = v.Scalar();
   if (allowed.size() > 0) {
     bool ok = false;

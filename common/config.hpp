@@ -7,6 +7,7 @@
 
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -48,7 +49,7 @@ class ConfigSection {
   const std::string& path() const { return path_; }
 
  private:
-  YAML::Node scalar(const std::string& key);
+  std::optional<YAML::Node> scalar(const std::string& key);
   std::string where(const std::string& key) const;
   YAML::Node node_;
   std::string path_;

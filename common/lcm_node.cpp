@@ -1,0 +1,154 @@
+#include "lcm_node.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "nerv/health_t.hpp"
+
+namespace nerv {
+namespace {
+
+std::atomic<bool> g_stop{false};
+void onSignal(int) { g_stop = true; }
+
+std::string resolveUrl(const std::string& configured) {
+  if (!configured.empty()) return configured;
+  if (const char* env = std::getenv("LCM_DEFAULT_URL"); env && *env) return env;
+  return kDefaultLcmUrl;
+}
+
+float percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return static_cast<float>(v[k]);
+}
+
+}  // namespace
+
+int64_t nowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(options_.lcm_url)) {
+  if (!lcm_.good())
+    throw std::runtime_error("LCM cannot start on " + resolveUrl(options_.lcm_url) +
+                             " (no multicast route? see README: network set-up)");
+  if (options_.shard_count < 1 || options_.shard_index < 0 ||
+      options_.shard_index >= options_.shard_count)
+    throw std::runtime_error("shard index " + std::to_string(options_.shard_index) + " of " +
+                             std::to_string(options_.shard_count) + " is invalid");
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  host_ = host;
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+Node::~Node() = default;
+
+bool Node::stopRequested() { return g_stop; }
+
+bool Node::ownsFrame(int64_t seq) const {
+  const int64_t n = options_.shard_count;
+  return ((seq % n) + n) % n == options_.shard_index;
+}
+
+void Node::countOut(int64_t capture_utime, double processing_ms) {
+  ++frames_out_;
+  latencies_ms_.push_back((nowUtime() - capture_utime) / 1000.0);
+  processing_ms_.push_back(processing_ms);
+}
+
+void Node::error(const std::string& counter, const std::string& message) {
+  ++errors_;
+  ++counters_[counter];
+  last_error_ = counter + ": " + message;
+  const int64_t now = nowUtime();
+  // At most ten lines a second, so a flood of bad input cannot flood the log.
+  if (now - last_error_print_utime_ > 100000) {
+    if (suppressed_errors_ > 0)
+      std::fprintf(stderr, "%s: (%d similar errors not shown)\n", options_.service.c_str(),
+                   suppressed_errors_);
+    std::fprintf(stderr, "%s: %s\n", options_.service.c_str(), last_error_.c_str());
+    last_error_print_utime_ = now;
+    suppressed_errors_ = 0;
+  } else {
+    ++suppressed_errors_;
+  }
+}
+
+int64_t Node::counter(const std::string& name) const {
+  auto it = counters_.find(name);
+  return it == counters_.end() ? 0 : it->second;
+}
+
+void Node::guarded(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    error("processing_failed", e.what());
+  } catch (...) {
+    error("processing_failed", "unknown exception");
+  }
+}
+
+void Node::publishHealth() {
+  health_t h;
+  h.utime = nowUtime();
+  h.service = options_.service;
+  h.instance = options_.instance;
+  h.host = host_;
+  h.pid = static_cast<int32_t>(getpid());
+  h.frames_in = frames_in_;
+  h.frames_out = frames_out_;
+  h.frames_dropped = frames_dropped_;
+  h.errors = errors_;
+  for (const auto& [name, value] : counters_) {
+    h.counter_names.push_back(name);
+    h.counter_values.push_back(value);
+  }
+  h.num_counters = static_cast<int32_t>(h.counter_names.size());
+  h.latency_p50_ms = percentile(latencies_ms_, 0.5);
+  h.latency_p95_ms = percentile(latencies_ms_, 0.95);
+  double sum = 0;
+  for (double v : processing_ms_) sum += v;
+  h.processing_ms = processing_ms_.empty() ? 0.f : static_cast<float>(sum / processing_ms_.size());
+  // degraded: errors since the last report; idle: nothing published since then.
+  h.status = errors_ > errors_at_last_health_ ? "degraded" : (latencies_ms_.empty() ? "idle" : "ok");
+  errors_at_last_health_ = errors_;
+  h.last_error = last_error_;
+  latencies_ms_.clear();
+  processing_ms_.clear();
+  lcm_.publish(channel("NERV_HEALTH"), &h);
+  last_health_utime_ = h.utime;
+}
+
+void Node::poll(int timeout_ms) {
+  if (last_health_utime_ == 0) publishHealth();
+  if (lcm_.handleTimeout(timeout_ms) < 0) {
+    error("lcm_failed", "handleTimeout failed");
+    usleep(10000);  // a broken socket must not spin the CPU
+  }
+  for (auto& tick : ticks_) guarded(tick);
+  if (nowUtime() - last_health_utime_ >= options_.health_period_s * 1e6) publishHealth();
+}
+
+int Node::spin() {
+  while (!g_stop) poll(50);
+  publishHealth();
+  return 0;
+}
+
+}  // namespace nerv

@@ -1,0 +1,124 @@
+// The LCM side of every nerv service: subscriptions that decode and validate,
+// publishing, counters, health once a second, and a clean exit on SIGINT/SIGTERM.
+// Handlers never throw into LCM's C stack: exceptions become counted errors.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "message_check.hpp"
+
+namespace nerv {
+
+// Default bus: stays on this host (ttl=0) with a receive buffer for full frames.
+constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+struct NodeOptions {
+  std::string service;          // e.g. "stixel"
+  std::string instance = "0";   // distinguishes shards / copies
+  std::string lcm_url;          // empty: LCM_DEFAULT_URL or kDefaultLcmUrl
+  std::string channel_prefix;   // prepended to every channel, e.g. "FRONT_"
+  Limits limits;
+  int shard_index = 0;          // this instance handles frames with seq % shard_count == shard_index
+  int shard_count = 1;
+  double health_period_s = 1.0;
+};
+
+int64_t nowUtime();
+
+class Node {
+ public:
+  explicit Node(NodeOptions options);  // throws std::runtime_error when LCM cannot start
+  ~Node();
+
+  std::string channel(const std::string& base) const { return options_.channel_prefix + base; }
+  const NodeOptions& options() const { return options_; }
+  bool ownsFrame(int64_t seq) const;
+
+  // Decodes each message as T and calls handler; failed decodes are counted as
+  // "decode_failed". queue_capacity bounds LCM's queue (older messages dropped).
+  template <class T>
+  void subscribe(const std::string& base_channel, std::function<void(const T&)> handler,
+                 int queue_capacity = 2);
+
+  template <class T>
+  void publish(const std::string& base_channel, const T& msg) {
+    lcm_.publish(channel(base_channel), &msg);
+  }
+
+  // Counters reported in health.
+  void countIn() { ++frames_in_; }
+  void countDropped(int64_t n = 1) { frames_dropped_ += n; }
+  // After publishing an output derived from a frame captured at capture_utime.
+  void countOut(int64_t capture_utime, double processing_ms);
+  // A rejected message or failed step: one line on stderr (rate-limited) and a counter.
+  void error(const std::string& counter, const std::string& message);
+  // A named event that is not an error (shown among the health counters).
+  void count(const std::string& counter, int64_t n = 1) { counters_[counter] += n; }
+  int64_t counter(const std::string& name) const;
+  int64_t framesIn() const { return frames_in_; }
+  int64_t framesOut() const { return frames_out_; }
+  int64_t errors() const { return errors_; }
+
+  // Called every loop iteration (about every 50 ms) for timeouts.
+  void onTick(std::function<void()> tick) { ticks_.push_back(std::move(tick)); }
+
+  // Handles messages for up to timeout_ms, runs the ticks, publishes health when due.
+  void poll(int timeout_ms);
+  // poll() until SIGINT/SIGTERM; returns the exit code (0).
+  int spin();
+  static bool stopRequested();
+
+ private:
+  struct Subscription {
+    Node* node;
+    std::function<void(const lcm::ReceiveBuffer*, const std::string&)> on_message;
+    void handle(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+      on_message(rbuf, channel);
+    }
+  };
+  void guarded(const std::function<void()>& body);
+  void publishHealth();
+
+  NodeOptions options_;
+  lcm::LCM lcm_;
+  std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  std::vector<std::function<void()>> ticks_;
+  int64_t frames_in_ = 0, frames_out_ = 0, frames_dropped_ = 0, errors_ = 0;
+  std::map<std::string, int64_t> counters_;
+  std::vector<double> latencies_ms_;   // since the last health report
+  std::vector<double> processing_ms_;  // since the last health report
+  std::string last_error_;
+  int64_t last_health_utime_ = 0;
+  int64_t errors_at_last_health_ = 0;
+  int64_t last_error_print_utime_ = 0;
+  int suppressed_errors_ = 0;
+  std::string host_;
+};
+
+template <class T>
+void Node::subscribe(const std::string& base_channel, std::function<void(const T&)> handler,
+                     int queue_capacity) {
+  auto sub = std::make_unique<Subscription>();
+  sub->node = this;
+  sub->on_message = [this, handler](const lcm::ReceiveBuffer* rbuf, const std::string& ch) {
+    T msg;
+    if (msg.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+      error("decode_failed", "message on " + ch + " does not decode as " + T::getTypeName());
+      return;
+    }
+    guarded([&] { handler(msg); });
+  };
+  lcm::Subscription* s =
+      lcm_.subscribe(channel(base_channel), &Subscription::handle, sub.get());
+  if (s && queue_capacity > 0) s->setQueueCapacity(queue_capacity);
+  subscriptions_.push_back(std::move(sub));
+}
+
+}  // namespace nerv

@@ -1,0 +1,101 @@
+#include "service_config.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace nerv {
+namespace {
+
+const char* const kSections[] = {"stereo_matcher", "stixel", "snv_extrinsic", "validator",
+                                 "source", "run"};
+
+struct Flags {
+  std::string config, instance, lcm_url, prefix, shard;
+  bool has_prefix = false;
+};
+
+Flags parseFlags(int argc, char** argv) {
+  Flags f;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* name) {
+      if (i + 1 >= argc) throw ConfigError(std::string("flag ") + name + " needs a value");
+      return std::string(argv[++i]);
+    };
+    if (arg == "--config") f.config = value("--config");
+    else if (arg == "--instance") f.instance = value("--instance");
+    else if (arg == "--lcm-url") f.lcm_url = value("--lcm-url");
+    else if (arg == "--prefix") { f.prefix = value("--prefix"); f.has_prefix = true; }
+    else if (arg == "--shard") f.shard = value("--shard");
+    else
+      throw ConfigError("unknown flag '" + arg +
+                        "' (flags: --config FILE --instance NAME --lcm-url URL --prefix P "
+                        "--shard K/N)");
+  }
+  return f;
+}
+
+YAML::Node rootNode(const std::string& path) {
+  return path.empty() ? YAML::Node(YAML::NodeType::Map) : loadConfigFile(path);
+}
+
+}  // namespace
+
+ServiceConfig::ServiceConfig(const std::string& service, int argc, char** argv)
+    : root_(YAML::Node(), ""), section_(YAML::Node(), service) {
+  const Flags flags = parseFlags(argc, argv);
+  root_ = ConfigSection(rootNode(flags.config), "");
+  options_.service = service;
+  root_.get("lcm_url", options_.lcm_url);
+  root_.get("channel_prefix", options_.channel_prefix);
+  ConfigSection limits = root_.section("limits");
+  limits.get("max_width", options_.limits.max_width, 16, 16384);
+  limits.get("max_height", options_.limits.max_height, 16, 16384);
+  limits.finish();
+  for (const char* name : kSections)
+    if (service != name) root_.allow(name);
+  section_ = root_.section(service);
+  ConfigSection shard = section_.section("shard");
+  shard.get("count", options_.shard_count, 1, 64);
+  shard.get("index", options_.shard_index, 0, 63);
+  shard.finish();
+  if (!flags.instance.empty()) options_.instance = flags.instance;
+  if (!flags.lcm_url.empty()) options_.lcm_url = flags.lcm_url;
+  if (flags.has_prefix) options_.channel_prefix = flags.prefix;
+  if (!flags.shard.empty()) {
+    int k = -1, n = -1;
+    char extra;
+    if (std::sscanf(flags.shard.c_str(), "%d/%d%c", &k, &n, &extra) != 2)
+      throw ConfigError("flag --shard '" + flags.shard + "' is not K/N");
+    options_.shard_index = k;
+    options_.shard_count = n;
+  }
+  if (options_.shard_count < 1 || options_.shard_index < 0 ||
+      options_.shard_index >= options_.shard_count)
+    throw ConfigError("shard " + std::to_string(options_.shard_index) + "/" +
+                      std::to_string(options_.shard_count) + " is not within 0..count-1");
+  if (options_.shard_count > 1 && flags.instance.empty())
+    options_.instance = "shard" + std::to_string(options_.shard_index);
+}
+
+void ServiceConfig::finish() {
+  section_.finish();
+  root_.finish();
+}
+
+int runService(const std::string& service, int argc, char** argv,
+               const std::function<int(ServiceConfig&)>& body) {
+  try {
+    ServiceConfig config(service, argc, argv);
+    return body(config);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "%s: %s\n", service.c_str(), e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", service.c_str(), e.what());
+    return 2;
+  }
+}
+
+}  // namespace nerv

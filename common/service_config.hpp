@@ -1,0 +1,39 @@
+// What every service's main does first: parse the command line, read the
+// pipeline config, take the shared keys (bus, prefix, limits, shard) and hand
+// the service its own section. Bad flags or keys end the program with one line.
+//
+//   <service> [--config FILE] [--instance NAME] [--lcm-url URL] [--prefix P] [--shard K/N]
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "config.hpp"
+#include "lcm_node.hpp"
+
+namespace nerv {
+
+// Top-level keys of a pipeline config (besides the service sections).
+// lcm_url, channel_prefix, limits {max_width, max_height}, source, run.
+class ServiceConfig {
+ public:
+  ServiceConfig(const std::string& service, int argc, char** argv);
+
+  // The service's own section (`stixel:` ...). Declare keys, then call finish().
+  ConfigSection& section() { return section_; }
+  // Checks that no unknown key is left anywhere; throws ConfigError.
+  void finish();
+  NodeOptions nodeOptions() const { return options_; }
+
+ private:
+  ConfigSection root_;
+  ConfigSection section_;
+  NodeOptions options_;
+};
+
+// Runs body(config) and turns configuration / start-up errors into one line on
+// stderr ("stixel: unknown config key 'stixel.foo'") and exit code 2.
+int runService(const std::string& service, int argc, char** argv,
+               const std::function<int(ServiceConfig&)>& body);
+
+}  // namespace nerv

@@ -1,0 +1,82 @@
+// snv_extrinsic service: DISPARITY + STIXELS (joined by seq) -> EXTRINSICS + SURFACE_NORMALS.
+#include <chrono>
+
+#include "message_convert.hpp"
+#include "seq_join.hpp"
+#include "service_config.hpp"
+#include "snv_extrinsic.hpp"
+
+using namespace nerv;
+
+namespace {
+
+int serve(ServiceConfig& config) {
+  const snv::Params params = snv::readParams(config.section());
+  int queue = 2, join_capacity = 8;
+  double join_timeout_ms = 2000;
+  config.section().get("queue", queue, 1, 100);
+  config.section().get("join_capacity", join_capacity, 1, 1000);
+  config.section().get("join_timeout_ms", join_timeout_ms, 1, 60000);
+  config.finish();
+
+  Node node(config.nodeOptions());
+  snv::SnvExtrinsicEstimator estimator(params);
+  cv::Mat disparity;
+
+  auto process = [&](const disparity_t& dmsg, const stixels_t& smsg) {
+    if (std::string why = decodeDisparity(dmsg, disparity); !why.empty())
+      return node.error("bad_disparity", "frame " + std::to_string(dmsg.header.seq) + ": " + why);
+    node.countIn();
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Hypothesis> rois;
+    for (const auto& r : smsg.rois) rois.push_back(fromMessage(r));
+    const snv::SnvResult result = estimator.process(disparity, toCamera(dmsg.calib), rois, fromMessage(smsg.ground));
+    const float ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    extrinsics_t ext;
+    ext.header = dmsg.header;
+    fillExtrinsics(result.pose, ext);
+    ext.processing_ms = ms;
+    surface_normals_t normals;
+    normals.header = dmsg.header;
+    normals.interval_px = result.interval_px;
+    normals.ground_samples = result.ground_samples;
+    normals.ground_normal_x = result.ground_normal[0];
+    normals.ground_normal_y = result.ground_normal[1];
+    normals.ground_normal_z = result.ground_normal[2];
+    for (const auto& s : result.rois) normals.rois.push_back(toMessage(s));
+    normals.num_rois = static_cast<int32_t>(normals.rois.size());
+    normals.processing_ms = ms;
+    node.publish("EXTRINSICS", ext);
+    node.publish("SURFACE_NORMALS", normals);
+    node.countOut(dmsg.header.utime, ms);
+  };
+
+  SeqJoin<disparity_t, stixels_t> join(
+      join_capacity, static_cast<int64_t>(join_timeout_ms * 1000), process,
+      [&](const std::optional<disparity_t>& d, const std::optional<stixels_t>& s) {
+        const int64_t seq = d ? d->header.seq : s->header.seq;
+        node.countDropped();
+        node.error("join_timeout", "frame " + std::to_string(seq) + ": no " +
+                                       (d ? "STIXELS" : "DISPARITY") + " with the same seq");
+      });
+
+  node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
+    if (!node.ownsFrame(msg.header.seq)) return;
+    if (Problem p = checkDisparity(msg, node.options().limits))
+      return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    join.pushA(msg.header.seq, msg, nowUtime());
+  }, queue);
+  node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
+    if (!node.ownsFrame(msg.header.seq)) return;
+    if (Problem p = checkStixels(msg, node.options().limits))
+      return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    join.pushB(msg.header.seq, msg, nowUtime());
+  }, queue + 2);
+  node.onTick([&] { join.expire(nowUtime()); });
+  return node.spin();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return runService("snv_extrinsic", argc, argv, serve); }

@@ -1,0 +1,58 @@
+// stixel service: DISPARITY (+ latest EXTRINSICS as ground prior) -> STIXELS.
+#include <chrono>
+
+#include "message_convert.hpp"
+#include "service_config.hpp"
+#include "stixel_estimator.hpp"
+
+using namespace nerv;
+
+namespace {
+
+int serve(ServiceConfig& config) {
+  const stixel::Params params = stixel::readParams(config.section());
+  int queue = 2;
+  config.section().get("queue", queue, 1, 100);
+  float min_prior_confidence = 0.3f;
+  config.section().get("min_prior_confidence", min_prior_confidence, 0.0, 1.0);
+  config.finish();
+
+  Node node(config.nodeOptions());
+  stixel::GroundPrior prior;
+  cv::Mat disparity;
+
+  node.subscribe<extrinsics_t>("EXTRINSICS", [&](const extrinsics_t& e) {
+    if (Problem p = checkExtrinsics(e)) return node.error(p.counter, p.message);
+    if (!e.valid || e.confidence < min_prior_confidence) return;
+    prior = {true, e.pitch_deg, e.roll_deg, e.height_m};
+  }, 10);
+
+  node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
+    if (!node.ownsFrame(msg.header.seq)) return;
+    if (Problem p = checkDisparity(msg, node.options().limits))
+      return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    if (std::string why = decodeDisparity(msg, disparity); !why.empty())
+      return node.error("bad_disparity", "frame " + std::to_string(msg.header.seq) + ": " + why);
+    node.countIn();
+
+    const auto start = std::chrono::steady_clock::now();
+    const stixel::StixelResult result = stixel::estimateStixels(disparity, toCamera(msg.calib), params, prior);
+    stixels_t out;
+    out.header = msg.header;
+    out.ground = toMessage(result.ground);
+    for (const auto& s : result.stixels) out.stixels.push_back(toMessage(s));
+    for (const auto& h : result.hypotheses) out.rois.push_back(toMessage(h));
+    out.num_stixels = static_cast<int32_t>(out.stixels.size());
+    out.num_rois = static_cast<int32_t>(out.rois.size());
+    out.processing_ms = std::chrono::duration<float, std::milli>(
+                            std::chrono::steady_clock::now() - start).count();
+    if (!result.ground.valid) node.error("no_ground", "frame " + std::to_string(msg.header.seq) + ": no ground found");
+    node.publish("STIXELS", out);
+    node.countOut(msg.header.utime, out.processing_ms);
+  }, queue);
+  return node.spin();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return runService("stixel", argc, argv, serve); }

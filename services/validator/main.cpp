@@ -1,0 +1,83 @@
+// validator service: STIXELS + SURFACE_NORMALS (joined by seq) -> DETECTIONS.
+// A STIXELS frame whose normals never come is still published, every
+// hypothesis marked "unvalidated", so no frame disappears downstream.
+#include <chrono>
+
+#include "message_convert.hpp"
+#include "seq_join.hpp"
+#include "service_config.hpp"
+#include "validator.hpp"
+
+using namespace nerv;
+
+namespace {
+
+int serve(ServiceConfig& config) {
+  const validator::Params params = validator::readParams(config.section());
+  int queue = 5, join_capacity = 8;
+  double join_timeout_ms = 2000;
+  config.section().get("queue", queue, 1, 100);
+  config.section().get("join_capacity", join_capacity, 1, 1000);
+  config.section().get("join_timeout_ms", join_timeout_ms, 1, 60000);
+  config.finish();
+
+  Node node(config.nodeOptions());
+
+  auto publish = [&](const stixels_t& smsg, const surface_normals_t* nmsg) {
+    node.countIn();
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<Hypothesis> hypotheses;
+    for (const auto& r : smsg.rois) hypotheses.push_back(fromMessage(r));
+    std::vector<NormalStats> stats;
+    if (nmsg)
+      for (const auto& s : nmsg->rois) stats.push_back(fromMessage(s));
+    const std::vector<Verdict> verdicts = validator::validate(hypotheses, stats, params);
+    detections_t out;
+    out.header = smsg.header;
+    out.num_kept = 0;
+    for (size_t i = 0; i < hypotheses.size(); ++i) {
+      out.detections.push_back(toDetection(hypotheses[i], verdicts[i]));
+      out.num_kept += verdicts[i].kept ? 1 : 0;
+      if (verdicts[i].label == "unvalidated") node.count("unvalidated_hypotheses");
+    }
+    out.num_detections = static_cast<int32_t>(out.detections.size());
+    out.processing_ms = std::chrono::duration<float, std::milli>(
+                            std::chrono::steady_clock::now() - start).count();
+    node.publish("DETECTIONS", out);
+    node.countOut(smsg.header.utime, out.processing_ms);
+  };
+
+  SeqJoin<stixels_t, surface_normals_t> join(
+      join_capacity, static_cast<int64_t>(join_timeout_ms * 1000),
+      [&](const stixels_t& s, const surface_normals_t& n) { publish(s, &n); },
+      [&](const std::optional<stixels_t>& s, const std::optional<surface_normals_t>& n) {
+        if (s) {
+          node.error("missing_normals", "frame " + std::to_string(s->header.seq) +
+                                            ": no SURFACE_NORMALS, hypotheses unvalidated");
+          publish(*s, nullptr);
+        } else {
+          node.countDropped();
+          node.error("missing_stixels", "frame " + std::to_string(n->header.seq) +
+                                            ": SURFACE_NORMALS without STIXELS");
+        }
+      });
+
+  node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
+    if (!node.ownsFrame(msg.header.seq)) return;
+    if (Problem p = checkStixels(msg, node.options().limits))
+      return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    join.pushA(msg.header.seq, msg, nowUtime());
+  }, queue);
+  node.subscribe<surface_normals_t>("SURFACE_NORMALS", [&](const surface_normals_t& msg) {
+    if (!node.ownsFrame(msg.header.seq)) return;
+    if (Problem p = checkSurfaceNormals(msg))
+      return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    join.pushB(msg.header.seq, msg, nowUtime());
+  }, queue);
+  node.onTick([&] { join.expire(nowUtime()); });
+  return node.spin();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return runService("validator", argc, argv, serve); }

@@ -1,0 +1,156 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "message_check.hpp"
+#include "message_convert.hpp"
+
+using namespace nerv;
+
+namespace {
+
+StereoCamera smallCamera() {
+  StereoCamera c;
+  c.width = 64;
+  c.height = 32;
+  c.fx = c.fy = 50;
+  c.cx = 32;
+  c.cy = 16;
+  c.baseline_m = 0.5;
+  return c;
+}
+
+stereo_frame_t goodFrame() {
+  stereo_frame_t f;
+  f.header.seq = 3;
+  f.header.utime = 1000;
+  f.calib = toCalibration(smallCamera());
+  cv::Mat img(32, 64, CV_8UC1);
+  cv::randu(img, 0, 255);
+  f.left = encodeImage(img, "gray8");
+  f.right = encodeImage(img, "png");
+  return f;
+}
+
+disparity_t goodDisparity() {
+  disparity_t d;
+  d.calib = toCalibration(smallCamera());
+  cv::Mat disp(32, 64, CV_32F, cv::Scalar(12.25f));
+  encodeDisparity(disp, "u16le", d);
+  encodeConfidence(cv::Mat(), d);
+  return d;
+}
+
+}  // namespace
+
+TEST(MessageCheck, GoodMessagesPass) {
+  EXPECT_FALSE(checkStereoFrame(goodFrame(), Limits{}));
+  EXPECT_FALSE(checkDisparity(goodDisparity(), Limits{}));
+}
+
+TEST(MessageCheck, SizeFieldMustMatchData) {
+  stereo_frame_t f = goodFrame();
+  f.left.size += 1;
+  Problem p = checkStereoFrame(f, Limits{});
+  EXPECT_EQ(p.counter, "bad_size");
+  EXPECT_NE(p.message.find("left"), std::string::npos);
+  disparity_t d = goodDisparity();
+  d.data.pop_back();
+  EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_size");
+}
+
+TEST(MessageCheck, DimensionsWithinLimits) {
+  stereo_frame_t f = goodFrame();
+  Limits small;
+  small.max_width = 32;
+  EXPECT_EQ(checkStereoFrame(f, small).counter, "bad_size");
+}
+
+TEST(MessageCheck, LeftRightAndCalibrationSizesMustAgree) {
+  stereo_frame_t f = goodFrame();
+  cv::Mat other(30, 64, CV_8UC1, cv::Scalar(1));
+  f.right = encodeImage(other, "gray8");
+  EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "size_mismatch");
+  f = goodFrame();
+  f.calib.width = 100;
+  EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "size_mismatch");
+}
+
+TEST(MessageCheck, NonFiniteCalibrationIsRejected) {
+  stereo_frame_t f = goodFrame();
+  f.calib.fx = NAN;
+  EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "bad_calibration");
+  f = goodFrame();
+  f.calib.baseline_m = -0.5;
+  EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "bad_calibration");
+  disparity_t d = goodDisparity();
+  d.calib.cy = INFINITY;
+  EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_calibration");
+}
+
+TEST(MessageCheck, UnknownEncodingsAreRejected) {
+  stereo_frame_t f = goodFrame();
+  f.left.encoding = "webp";
+  EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "bad_encoding");
+  disparity_t d = goodDisparity();
+  d.encoding = "float32";
+  EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_encoding");
+}
+
+TEST(MessageCheck, StixelsCountsAndNumbers) {
+  stixels_t s;
+  s.ground = toMessage(GroundModel{});
+  s.num_stixels = 1;  // but no stixels
+  s.num_rois = 0;
+  EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_size");
+  s.num_stixels = 0;
+  EXPECT_FALSE(checkStixels(s, Limits{}));
+  Hypothesis h;
+  h.box = {1, 2, 3, 4};
+  h.z_m = NAN;
+  s.rois.push_back(toMessage(h));
+  s.num_rois = 1;
+  EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_value");
+  surface_normals_t n;
+  n.num_rois = 1;
+  n.rois.push_back(toMessage(NormalStats{}));
+  n.rois[0].ground_fraction = INFINITY;
+  EXPECT_EQ(checkSurfaceNormals(n).counter, "bad_value");
+}
+
+TEST(MessageConvert, ImagesRoundTripInEveryLosslessEncoding) {
+  cv::Mat gray(20, 30, CV_8UC1), bgr(20, 30, CV_8UC3), out;
+  cv::randu(gray, 0, 255);
+  cv::randu(bgr, 0, 255);
+  for (const char* enc : {"gray8", "png"}) {
+    ASSERT_EQ(decodeImage(encodeImage(gray, enc), out), "");
+    EXPECT_EQ(cv::norm(gray, out, cv::NORM_INF), 0) << enc;
+  }
+  for (const char* enc : {"bgr8", "png"}) {
+    ASSERT_EQ(decodeImage(encodeImage(bgr, enc), out), "");
+    EXPECT_EQ(cv::norm(bgr, out, cv::NORM_INF), 0) << enc;
+  }
+  image_t broken = encodeImage(gray, "png");
+  broken.data.resize(10);
+  EXPECT_NE(decodeImage(broken, out), "");
+}
+
+TEST(MessageConvert, DisparityFixedPointRoundTrip) {
+  cv::Mat disp(8, 9, CV_32F);
+  cv::randu(disp, 0.0, 200.0);
+  disp.at<float>(0, 0) = 0;
+  disp.at<float>(1, 1) = -3;
+  disp.at<float>(2, 2) = NAN;
+  for (const char* enc : {"u16le", "png16"}) {
+    disparity_t msg;
+    encodeDisparity(disp, enc, msg);
+    cv::Mat back;
+    ASSERT_EQ(decodeDisparity(msg, back), "");
+    EXPECT_EQ(back.at<float>(0, 0), 0);
+    EXPECT_EQ(back.at<float>(1, 1), 0);
+    EXPECT_EQ(back.at<float>(2, 2), 0);
+    for (int v = 3; v < 8; ++v)
+      for (int u = 0; u < 9; ++u)
+        EXPECT_NEAR(back.at<float>(v, u), disp.at<float>(v, u), 0.5 / kDisparityScale + 1e-6);
+  }
+}

@@ -1,0 +1,223 @@
+#include "log_summary.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "json_writer.hpp"
+#include "nerv/detections_t.hpp"
+#include "nerv/disparity_t.hpp"
+#include "nerv/extrinsics_t.hpp"
+#include "nerv/health_t.hpp"
+#include "nerv/stereo_frame_t.hpp"
+#include "nerv/stixels_t.hpp"
+#include "nerv/surface_normals_t.hpp"
+
+namespace nerv {
+namespace {
+
+template <class T>
+bool decodeAs(const lcm::LogEvent& e, T& msg) {
+  if (e.datalen < 8) return false;
+  const auto* b = static_cast<const uint8_t*>(e.data);
+  uint64_t h = 0;
+  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
+  return static_cast<int64_t>(h) == T::getHash() && msg.decode(e.data, 0, e.datalen) >= 0;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0 : s / v.size();
+}
+
+struct FrameRow {
+  std::string frame_id;
+  int64_t frame_event_utime = -1;
+  int hypotheses = -1, kept = -1;
+  double latency_ms = -1;
+  bool has_extrinsics = false, extrinsics_valid = false;
+  double pitch_deg = 0, roll_deg = 0, height_m = 0, confidence = 0;
+  std::string ground_source;
+  double ground_height_m = 0;
+};
+
+}  // namespace
+
+std::string summarizeLog(const std::string& log_path, std::string* text_report) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw std::runtime_error("log " + log_path + " cannot be read");
+  std::map<int64_t, FrameRow> frames;
+  std::map<std::string, std::vector<double>> stage_ms;
+  std::map<std::string, health_t> last_health;
+  std::vector<double> latencies;
+  std::map<std::string, int64_t> events_per_channel;
+  int64_t first_frame_utime = -1, last_detection_utime = -1, detections_events = 0;
+
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    ++events_per_channel[e->channel];
+    stereo_frame_t frame;
+    disparity_t disp;
+    stixels_t stix;
+    surface_normals_t normals;
+    extrinsics_t ext;
+    detections_t det;
+    health_t health;
+    if (decodeAs(*e, frame)) {
+      FrameRow& r = frames[frame.header.seq];
+      r.frame_id = frame.header.frame_id;
+      r.frame_event_utime = e->timestamp;
+      if (first_frame_utime < 0) first_frame_utime = e->timestamp;
+    } else if (decodeAs(*e, disp)) {
+      stage_ms["stereo_matcher"].push_back(disp.processing_ms);
+    } else if (decodeAs(*e, stix)) {
+      stage_ms["stixel"].push_back(stix.processing_ms);
+      FrameRow& r = frames[stix.header.seq];
+      r.ground_source = stix.ground.source;
+      r.ground_height_m = stix.ground.height_m;
+    } else if (decodeAs(*e, normals)) {
+      stage_ms["snv_extrinsic"].push_back(normals.processing_ms);
+    } else if (decodeAs(*e, ext)) {
+      FrameRow& r = frames[ext.header.seq];
+      r.has_extrinsics = true;
+      r.extrinsics_valid = ext.valid;
+      r.pitch_deg = ext.pitch_deg;
+      r.roll_deg = ext.roll_deg;
+      r.height_m = ext.height_m;
+      r.confidence = ext.confidence;
+    } else if (decodeAs(*e, det)) {
+      stage_ms["validator"].push_back(det.processing_ms);
+      FrameRow& r = frames[det.header.seq];
+      r.hypotheses = det.num_detections;
+      r.kept = det.num_kept;
+      r.latency_ms = (e->timestamp - det.header.utime) / 1000.0;
+      if (r.frame_id.empty()) r.frame_id = det.header.frame_id;
+      latencies.push_back(r.latency_ms);
+      last_detection_utime = std::max(last_detection_utime, e->timestamp);
+      ++detections_events;
+    } else if (decodeAs(*e, health)) {
+      last_health[health.service + "/" + health.instance] = health;
+    }
+  }
+
+  int frames_in = 0, frames_out = 0;
+  std::vector<int64_t> missing;
+  for (const auto& [seq, r] : frames) {
+    frames_in += r.frame_event_utime >= 0;
+    frames_out += r.hypotheses >= 0;
+    if (r.frame_event_utime >= 0 && r.hypotheses < 0) missing.push_back(seq);
+  }
+  const double duration_s =
+      (first_frame_utime >= 0 && last_detection_utime > first_frame_utime)
+          ? (last_detection_utime - first_frame_utime) / 1e6 : 0;
+
+  JsonWriter j(false);
+  j.beginObject();
+  j.field("log", log_path);
+  j.field("frames_in", frames_in);
+  j.field("frames_out", frames_out);
+  j.key("frames_without_detections");
+  j.beginArray();
+  for (int64_t s : missing) j.value(s);
+  j.endArray();
+  j.field("duration_s", duration_s);
+  j.field("fps", duration_s > 0 ? frames_out / duration_s : 0.0);
+  j.key("latency_ms");
+  j.beginObject();
+  j.field("p50", percentile(latencies, 0.5));
+  j.field("p95", percentile(latencies, 0.95));
+  j.field("max", latencies.empty() ? 0.0 : *std::max_element(latencies.begin(), latencies.end()));
+  j.endObject();
+  j.key("stage_processing_ms");
+  j.beginObject();
+  for (const auto& [stage, v] : stage_ms) {
+    j.key(stage);
+    j.beginObject();
+    j.field("mean", mean(v));
+    j.field("p95", percentile(v, 0.95));
+    j.endObject();
+  }
+  j.endObject();
+  j.key("events_per_channel");
+  j.beginObject();
+  for (const auto& [ch, n] : events_per_channel) j.field(ch, n);
+  j.endObject();
+  j.key("health");
+  j.beginObject();
+  for (const auto& [name, h] : last_health) {
+    j.key(name);
+    j.beginObject();
+    j.field("frames_in", h.frames_in);
+    j.field("frames_out", h.frames_out);
+    j.field("frames_dropped", h.frames_dropped);
+    j.field("errors", h.errors);
+    j.field("last_error", h.last_error);
+    j.endObject();
+  }
+  j.endObject();
+  j.key("frames");
+  j.beginArray();
+  for (const auto& [seq, r] : frames) {
+    j.beginObject();
+    j.field("seq", seq);
+    j.field("frame_id", r.frame_id);
+    j.field("hypotheses", r.hypotheses);
+    j.field("kept", r.kept);
+    j.field("latency_ms", r.latency_ms);
+    j.field("extrinsics_valid", r.extrinsics_valid);
+    j.field("pitch_deg", r.pitch_deg);
+    j.field("roll_deg", r.roll_deg);
+    j.field("height_m", r.height_m);
+    j.field("confidence", r.confidence);
+    j.field("ground_source", r.ground_source);
+    j.field("ground_height_m", r.ground_height_m);
+    j.endObject();
+  }
+  j.endArray();
+  j.endObject();
+
+  if (text_report) {
+    char buf[512];
+    std::string t;
+    std::snprintf(buf, sizeof buf, "frames: %d in, %d out (%zu without DETECTIONS), %.1f fps over %.2f s\n",
+                  frames_in, frames_out, missing.size(), duration_s > 0 ? frames_out / duration_s : 0.0, duration_s);
+    t += buf;
+    std::snprintf(buf, sizeof buf, "latency capture->DETECTIONS: p50 %.1f ms, p95 %.1f ms\n",
+                  percentile(latencies, 0.5), percentile(latencies, 0.95));
+    t += buf;
+    t += "stage ms/frame:";
+    for (const auto& [stage, v] : stage_ms) {
+      std::snprintf(buf, sizeof buf, " %s %.1f", stage.c_str(), mean(v));
+      t += buf;
+    }
+    t += "\n";
+    for (const auto& [seq, r] : frames) {
+      std::snprintf(buf, sizeof buf,
+                    "  %-28s hyp %3d kept %3d  pitch %6.2f deg  height %5.2f m  conf %.2f  ground %s %.2f m\n",
+                    r.frame_id.c_str(), r.hypotheses, r.kept, r.pitch_deg, r.height_m, r.confidence,
+                    r.ground_source.c_str(), r.ground_height_m);
+      t += buf;
+    }
+    for (const auto& [name, h] : last_health) {
+      std::snprintf(buf, sizeof buf, "health %-22s in %lld out %lld dropped %lld errors %lld%s%s\n",
+                    name.c_str(), (long long)h.frames_in, (long long)h.frames_out,
+                    (long long)h.frames_dropped, (long long)h.errors,
+                    h.last_error.empty() ? "" : "  last: ", h.last_error.c_str());
+      t += buf;
+    }
+    *text_report = t;
+  }
+  return j.str();
+}
+
+}  // namespace nerv
