@@ -1,6 +1,7 @@
 #include "service_config.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -13,6 +14,7 @@ const char* const kSections[] = {"stereo_matcher", "stixel", "snv_extrinsic", "v
 struct Flags {
   std::string config, instance, lcm_url, prefix, shard;
   bool has_prefix = false;
+  bool check_only = false;
 };
 
 Flags parseFlags(int argc, char** argv) {
@@ -28,10 +30,11 @@ Flags parseFlags(int argc, char** argv) {
     else if (arg == "--lcm-url") f.lcm_url = value("--lcm-url");
     else if (arg == "--prefix") { f.prefix = value("--prefix"); f.has_prefix = true; }
     else if (arg == "--shard") f.shard = value("--shard");
+    else if (arg == "--check-config") f.check_only = true;
     else
       throw ConfigError("unknown flag '" + arg +
                         "' (flags: --config FILE --instance NAME --lcm-url URL --prefix P "
-                        "--shard K/N)");
+                        "--shard K/N --check-config)");
   }
   return f;
 }
@@ -47,6 +50,7 @@ ServiceConfig::ServiceConfig(const std::string& service, int argc, char** argv)
   const Flags flags = parseFlags(argc, argv);
   root_ = ConfigSection(rootNode(flags.config), "");
   options_.service = service;
+  check_only_ = flags.check_only;
   root_.get("lcm_url", options_.lcm_url);
   root_.get("channel_prefix", options_.channel_prefix);
   ConfigSection limits = root_.section("limits");
@@ -82,6 +86,7 @@ ServiceConfig::ServiceConfig(const std::string& service, int argc, char** argv)
 void ServiceConfig::finish() {
   section_.finish();
   root_.finish();
+  if (check_only_) std::exit(0);  // --check-config: the config is valid, nothing else to do
 }
 
 int runService(const std::string& service, int argc, char** argv,

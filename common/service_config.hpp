@@ -3,6 +3,7 @@
 // the service its own section. Bad flags or keys end the program with one line.
 //
 //   <service> [--config FILE] [--instance NAME] [--lcm-url URL] [--prefix P] [--shard K/N]
+//             [--check-config]   (validate the config and exit 0, or print the error and exit 2)
 #pragma once
 
 #include <functional>
@@ -22,6 +23,7 @@ class ServiceConfig {
   // The service's own section (`stixel:` ...). Declare keys, then call finish().
   ConfigSection& section() { return section_; }
   // Checks that no unknown key is left anywhere; throws ConfigError.
+  // With --check-config, exits 0 here.
   void finish();
   NodeOptions nodeOptions() const { return options_; }
 
@@ -29,6 +31,7 @@ class ServiceConfig {
   ConfigSection root_;
   ConfigSection section_;
   NodeOptions options_;
+  bool check_only_ = false;
 };
 
 // Runs body(config) and turns configuration / start-up errors into one line on

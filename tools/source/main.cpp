@@ -2,7 +2,7 @@
 //
 //   nerv_source --data DIR [--rate HZ] [--in-flight K] [--encoding gray8|bgr8|png|jpeg]
 //               [--frames N] [--wait-for svc,svc] [--drain-timeout S] [--lcm-url URL]
-//               [--prefix P] [--no-wait]
+//               [--prefix P] [--no-wait] [--check]
 //
 // --rate 0 publishes as fast as the pipeline takes frames: at most K frames
 // without DETECTIONS at any time. After the last frame it waits for every
@@ -35,6 +35,7 @@ struct Options {
   double drain_timeout_s = 30, startup_timeout_s = 20;
   std::set<std::string> wait_for;
   bool wait_detections = true;
+  bool check_only = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -66,6 +67,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--lcm-url") o.lcm_url = value();
     else if (a == "--prefix") o.prefix = value();
     else if (a == "--no-wait") o.wait_detections = false;
+    else if (a == "--check") o.check_only = true;
     else if (a == "--wait-for") {
       std::stringstream list(value());
       for (std::string s; std::getline(list, s, ',');)
@@ -96,6 +98,7 @@ stereo_frame_t makeFrame(const Dataset& ds, const DatasetFrame& f, const std::st
 
 int play(const Options& o) {
   const Dataset ds = openDataset(o.data);
+  if (o.check_only) return 0;  // --check: the dataset opens, nothing else to do
   const size_t count = o.max_frames >= 0 ? std::min<size_t>(o.max_frames, ds.frames.size())
                                          : ds.frames.size();
   // Frames are read before the clock starts so disk speed does not shape the stream.

@@ -1,0 +1,115 @@
+// Test helper: publishes malformed STEREO_FRAME / DISPARITY messages, then one
+// good frame, and checks over LCM that the stereo_matcher and stixel services
+// counted each rejection in NERV_HEALTH and still produce output afterwards.
+// Exit 0 when every expectation holds; prints what it saw either way.
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "message_convert.hpp"
+#include "nerv/disparity_t.hpp"
+#include "nerv/health_t.hpp"
+#include "nerv/stereo_frame_t.hpp"
+#include "nerv/stixels_t.hpp"
+
+using namespace nerv;
+
+namespace {
+
+struct Listener {
+  std::map<std::string, std::map<std::string, int64_t>> counters;  // service -> counter -> value
+  std::map<std::string, int64_t> outputs;                          // channel -> count
+  void health(const lcm::ReceiveBuffer*, const std::string&, const health_t* h) {
+    for (int i = 0; i < h->num_counters; ++i) counters[h->service][h->counter_names[i]] = h->counter_values[i];
+  }
+  void disparity(const lcm::ReceiveBuffer*, const std::string& ch, const disparity_t*) { ++outputs[ch]; }
+  void stixels(const lcm::ReceiveBuffer*, const std::string& ch, const stixels_t*) { ++outputs[ch]; }
+};
+
+stereo_frame_t frame(int64_t seq) {
+  StereoCamera cam;
+  cam.width = 320;
+  cam.height = 120;
+  cam.fx = cam.fy = 200;
+  cam.cx = 160;
+  cam.cy = 60;
+  cam.baseline_m = 0.5;
+  cv::Mat img(cam.height, cam.width, CV_8UC1);
+  cv::randu(img, 0, 255);
+  stereo_frame_t f;
+  f.header.seq = seq;
+  f.header.utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                       std::chrono::system_clock::now().time_since_epoch()).count();
+  f.header.frame_id = "inject/" + std::to_string(seq);
+  f.calib = toCalibration(cam);
+  f.left = encodeImage(img, "gray8");
+  f.right = encodeImage(img, "gray8");
+  return f;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string url = argc > 1 ? argv[1] : "";
+  lcm::LCM lcm(url);
+  if (!lcm.good()) {
+    std::fprintf(stderr, "inject: LCM cannot start\n");
+    return 2;
+  }
+  Listener l;
+  lcm.subscribe("NERV_HEALTH", &Listener::health, &l);
+  lcm.subscribe("DISPARITY", &Listener::disparity, &l);
+  lcm.subscribe("STIXELS", &Listener::stixels, &l);
+
+  // 1. bytes that are no message at all
+  const std::string garbage = "this is not an LCM message";
+  lcm.publish("STEREO_FRAME", garbage.data(), garbage.size());
+  lcm.publish("DISPARITY", garbage.data(), garbage.size());
+  // 2. size field disagrees with the data
+  stereo_frame_t f = frame(100);
+  f.left.size += 7;
+  lcm.publish("STEREO_FRAME", &f);
+  // 3. left and right of different sizes
+  f = frame(101);
+  cv::Mat small(60, 320, CV_8UC1, cv::Scalar(3));
+  f.right = encodeImage(small, "gray8");
+  lcm.publish("STEREO_FRAME", &f);
+  // 4. NaN calibration
+  f = frame(102);
+  f.calib.fx = NAN;
+  lcm.publish("STEREO_FRAME", &f);
+  // 5. a disparity whose size does not match its calibration
+  disparity_t d;
+  d.header = frame(103).header;
+  d.calib = frame(103).calib;
+  encodeDisparity(cv::Mat(50, 50, CV_32F, cv::Scalar(5.f)), "u16le", d);
+  encodeConfidence(cv::Mat(), d);
+  lcm.publish("DISPARITY", &d);
+  // 6. a good frame: the services must still work
+  f = frame(104);
+  lcm.publish("STEREO_FRAME", &f);
+
+  auto expectations = [&] {
+    auto c = [&](const char* svc, const char* name) { return l.counters[svc][name]; };
+    return c("stereo_matcher", "decode_failed") >= 1 && c("stereo_matcher", "bad_size") >= 1 &&
+           c("stereo_matcher", "size_mismatch") >= 1 && c("stereo_matcher", "bad_calibration") >= 1 &&
+           c("stixel", "decode_failed") >= 1 && c("stixel", "size_mismatch") >= 1 &&
+           l.outputs["DISPARITY"] >= 1 && l.outputs["STIXELS"] >= 1;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!expectations() && std::chrono::steady_clock::now() < deadline) lcm.handleTimeout(100);
+
+  for (const auto& [svc, counters] : l.counters)
+    for (const auto& [name, value] : counters) std::printf("%s.%s = %lld\n", svc.c_str(), name.c_str(), (long long)value);
+  for (const auto& [ch, n] : l.outputs) std::printf("output %s: %lld\n", ch.c_str(), (long long)n);
+  if (!expectations()) {
+    std::fprintf(stderr, "inject: not every rejection was counted, or no output after the bad input\n");
+    return 1;
+  }
+  return 0;
+}

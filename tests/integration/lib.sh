@@ -1,0 +1,64 @@
+# Shared by the multiprocess tests: a private LCM bus and child bookkeeping.
+# Each test re-executes itself inside a fresh network namespace whose loopback
+# carries multicast, so no traffic leaves the namespace and tests cannot hear
+# each other or anything else on the machine.
+set -euo pipefail
+
+: "${NERV_BUILD:?set by ctest}"
+: "${NERV_ROOT:?set by ctest}"
+BIN="$NERV_BUILD/bin"
+URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+SERVICES=(stereo_matcher stixel snv_extrinsic validator)
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+pass() { echo "ok: $*"; }
+
+enter_private_bus() {
+  if [[ "${NERV_IN_NETNS:-}" == 1 ]]; then return; fi
+  if ! unshare -n true 2>/dev/null; then echo "SKIP: cannot create a network namespace" >&2; exit 77; fi
+  exec env NERV_IN_NETNS=1 unshare -n -- bash -c \
+    'ip link set lo up && ip link set lo multicast on && ip route add 224.0.0.0/4 dev lo && exec bash "$@"' \
+    bash "$0" "$@"
+}
+
+CHILDREN=()
+start_child() {  # start_child LOGFILE CMD...
+  local log="$1"; shift
+  "$@" >"$log" 2>&1 &
+  CHILDREN+=($!)
+}
+stop_children() {
+  local pid
+  for pid in "${CHILDREN[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${CHILDREN[@]}"; do
+    for _ in $(seq 1 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL "$pid" 2>/dev/null || true
+    wait "$pid" 2>/dev/null || true
+  done
+  CHILDREN=()
+}
+
+# wait_until TIMEOUT_S CMD...: bounded retry, never a bare sleep.
+wait_until() {
+  local limit=$(( $1 * 20 )); shift
+  for _ in $(seq 1 "$limit"); do
+    if "$@"; then return 0; fi
+    sleep 0.05
+  done
+  return 1
+}
+
+# A short rendered sequence (cached in the build tree).
+synthetic_sequence() {  # synthetic_sequence SCENE FRAMES -> prints the folder
+  local dir="$NERV_BUILD/test_data/$1_$2"
+  if [[ ! -f "$dir/.complete" ]]; then
+    rm -rf "$dir"
+    "$BIN/nerv_synth" --scene "$1" --frames "$2" --out "$dir" >/dev/null 2>&1 || fail "nerv_synth $1 failed"
+    touch "$dir/.complete"
+  fi
+  echo "$dir"
+}
+
+no_survivors() {  # no process of this build left running
+  ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "lcm-logger --lcm-url=$URL" >/dev/null
+}
