@@ -1,0 +1,225 @@
+// nerv_eval_detections: the reference method's table from a recorded run.
+//
+//   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
+//                        [--min-iou 0.5] [--extrinsics FILE] [--json]
+//
+// "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
+// kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
+// --extrinsics FILE (lines "frame pitch_deg roll_deg height_m") adds the pose
+// error of EXTRINSICS against it.
+#include <lcm/lcm-cpp.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "detection_eval.hpp"
+#include "json_writer.hpp"
+#include "nerv/detections_t.hpp"
+#include "nerv/disparity_t.hpp"
+#include "nerv/extrinsics_t.hpp"
+#include "nerv/stixels_t.hpp"
+#include "nerv/surface_normals_t.hpp"
+
+using namespace nerv;
+
+namespace {
+
+struct Options {
+  std::string log, labels, extrinsics;
+  EvalParams params;
+  bool json = false;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error("flag " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--log") o.log = value();
+    else if (a == "--labels") o.labels = value();
+    else if (a == "--extrinsics") o.extrinsics = value();
+    else if (a == "--max-distance") o.params.max_distance_m = std::stof(value());
+    else if (a == "--min-iou") o.params.min_iou = std::stof(value());
+    else if (a == "--json") o.json = true;
+    else if (a == "--classes") {
+      std::stringstream list(value());
+      for (std::string c; std::getline(list, c, ',');)
+        if (!c.empty()) o.params.classes.insert(c);
+    } else throw std::runtime_error("unknown flag '" + a + "'");
+  }
+  if (o.log.empty() || o.labels.empty()) throw std::runtime_error("--log LOG and --labels DIR are required");
+  if (!std::filesystem::exists(o.log)) throw std::runtime_error("log " + o.log + " does not exist");
+  if (!std::filesystem::is_directory(o.labels)) throw std::runtime_error("label folder " + o.labels + " does not exist");
+  return o;
+}
+
+template <class T>
+bool decodeAs(const lcm::LogEvent& e, T& msg) {
+  if (e.datalen < 8) return false;
+  const auto* b = static_cast<const uint8_t*>(e.data);
+  uint64_t h = 0;
+  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
+  return static_cast<int64_t>(h) == T::getHash() && msg.decode(e.data, 0, e.datalen) >= 0;
+}
+
+std::string frameName(const std::string& frame_id) { return frame_id.substr(frame_id.find_last_of('/') + 1); }
+
+struct TruePose { float pitch = 0, roll = 0, height = 0; };
+
+std::map<std::string, TruePose> readExtrinsics(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("extrinsics file " + path + " cannot be read");
+  std::map<std::string, TruePose> poses;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    std::string frame;
+    TruePose p;
+    if (s >> frame >> p.pitch >> p.roll >> p.height) poses[frame] = p;
+  }
+  return poses;
+}
+
+// Frame names may be "000003" in one place and "3" in another.
+const TruePose* findPose(const std::map<std::string, TruePose>& poses, const std::string& name) {
+  if (auto it = poses.find(name); it != poses.end()) return &it->second;
+  try {
+    const long n = std::stol(name);
+    for (const auto& [k, v] : poses)
+      if (std::stol(k) == n) return &v;
+  } catch (...) {
+  }
+  return nullptr;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    lcm::LogFile log(o.log, "r");
+    if (!log.good()) throw std::runtime_error("log " + o.log + " cannot be read");
+    std::map<std::string, TruePose> poses;
+    if (!o.extrinsics.empty()) poses = readExtrinsics(o.extrinsics);
+
+    EvalCounts all, kept;
+    int frames = 0, unlabelled = 0;
+    std::map<std::string, std::vector<double>> stage_ms;
+    std::vector<double> pitch_err, roll_err, height_err;
+    std::map<int64_t, bool> seen;
+    while (const lcm::LogEvent* e = log.readNextEvent()) {
+      detections_t det;
+      disparity_t disp;
+      stixels_t stix;
+      surface_normals_t normals;
+      extrinsics_t ext;
+      if (decodeAs(*e, det)) {
+        if (seen[det.header.seq]) continue;  // a replayed or duplicated frame counts once
+        seen[det.header.seq] = true;
+        stage_ms["validator"].push_back(det.processing_ms);
+        const std::string label_path = o.labels + "/" + frameName(det.header.frame_id) + ".txt";
+        if (!std::filesystem::exists(label_path)) {
+          ++unlabelled;
+          continue;
+        }
+        const auto labels = readKittiLabels(label_path);
+        std::vector<EvalBox> hyps, validated;
+        for (const auto& d : det.detections) {
+          const EvalBox b{float(d.x), float(d.y), float(d.x + d.w), float(d.y + d.h), d.score};
+          hyps.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
+          if (d.kept) validated.push_back(b);
+        }
+        all.add(evaluateFrame(hyps, labels, o.params));
+        kept.add(evaluateFrame(validated, labels, o.params));
+        ++frames;
+      } else if (decodeAs(*e, disp)) {
+        stage_ms["stereo_matcher"].push_back(disp.processing_ms);
+      } else if (decodeAs(*e, stix)) {
+        stage_ms["stixel"].push_back(stix.processing_ms);
+      } else if (decodeAs(*e, normals)) {
+        stage_ms["snv_extrinsic"].push_back(normals.processing_ms);
+      } else if (decodeAs(*e, ext) && !poses.empty()) {
+        if (const TruePose* p = findPose(poses, frameName(ext.header.frame_id)); p && ext.valid) {
+          pitch_err.push_back(std::fabs(ext.pitch_deg - p->pitch));
+          roll_err.push_back(std::fabs(ext.roll_deg - p->roll));
+          height_err.push_back(std::fabs(ext.height_m - p->height));
+        }
+      }
+    }
+    if (frames == 0) throw std::runtime_error("no DETECTIONS with labels in " + o.log);
+    auto mean = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return v.empty() ? 0.0 : s / v.size();
+    };
+
+    if (o.json) {
+      JsonWriter j;
+      j.beginObject();
+      j.field("frames", frames);
+      j.field("frames_without_labels", unlabelled);
+      for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel_only", all}, {"stixel_snv", kept}}) {
+        j.key(name);
+        j.beginObject();
+        j.field("objects", c.objects);
+        j.field("tp", c.tp);
+        j.field("fp", c.fp);
+        j.field("fn", c.fn);
+        j.field("precision", c.precision());
+        j.field("recall", c.recall());
+        j.field("f1", c.f1());
+        j.endObject();
+      }
+      j.key("stage_ms");
+      j.beginObject();
+      for (const auto& [s, v] : stage_ms) j.field(s, mean(v));
+      j.endObject();
+      if (!poses.empty()) {
+        j.key("pose_error");
+        j.beginObject();
+        j.field("frames", static_cast<int>(pitch_err.size()));
+        j.field("pitch_deg_p95", percentile(pitch_err, 0.95));
+        j.field("roll_deg_p95", percentile(roll_err, 0.95));
+        j.field("height_m_p95", percentile(height_err, 0.95));
+        j.field("height_m_mean", mean(height_err));
+        j.endObject();
+      }
+      j.endObject();
+      std::printf("%s\n", j.str().c_str());
+      return 0;
+    }
+    std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s\n", frames, unlabelled,
+                o.params.min_iou, o.params.max_distance_m < 1e8 ? ", distance-limited" : "");
+    std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
+    for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
+      std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,
+                  c.precision(), c.recall(), c.f1());
+    std::printf("mean ms per frame:");
+    for (const auto& [s, v] : stage_ms) std::printf(" %s %.2f", s.c_str(), mean(v));
+    std::printf("\n");
+    if (!poses.empty())
+      std::printf("pose error (95th percentile over %zu frames): pitch %.3f deg, roll %.3f deg, height %.3f m\n",
+                  pitch_err.size(), percentile(pitch_err, 0.95), percentile(roll_err, 0.95),
+                  percentile(height_err, 0.95));
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nerv_eval_detections: %s\n", e.what());
+    return 2;
+  }
+}

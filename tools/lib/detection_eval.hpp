@@ -1,0 +1,49 @@
+// PASCAL-style evaluation of 2D detections against KITTI labels, as in the
+// NERV reference's table: a detection is a true positive when its IoU with an
+// unmatched labelled object exceeds the threshold (0.5). A second detection of
+// the same object is a false positive. Detections lying mostly inside a
+// DontCare region, or matching an object that is ignored (class not counted,
+// or farther than max_distance_m), count neither way; ignored objects are not
+// misses.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "kitti_labels.hpp"
+
+namespace nerv {
+
+struct EvalBox {
+  float x1 = 0, y1 = 0, x2 = 0, y2 = 0;
+  float score = 0;
+};
+
+struct EvalParams {
+  float min_iou = 0.5f;
+  float dontcare_min_overlap = 0.5f;  // share of the detection's area inside a DontCare box
+  float max_distance_m = 1e9f;        // labelled objects farther than this are ignored (z field)
+  std::set<std::string> classes;      // counted types; empty = every type but DontCare
+};
+
+struct EvalCounts {
+  int objects = 0, tp = 0, fp = 0, fn = 0, ignored = 0;
+  void add(const EvalCounts& o) {
+    objects += o.objects; tp += o.tp; fp += o.fp; fn += o.fn; ignored += o.ignored;
+  }
+  double precision() const { return tp + fp > 0 ? double(tp) / (tp + fp) : 0; }
+  double recall() const { return tp + fn > 0 ? double(tp) / (tp + fn) : 0; }
+  double f1() const {
+    const double p = precision(), r = recall();
+    return p + r > 0 ? 2 * p * r / (p + r) : 0;
+  }
+};
+
+float iou(const EvalBox& a, const EvalBox& b);
+
+// One frame: detections (any order; matched by descending score) vs labels.
+EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
+                         const std::vector<KittiLabel>& labels, const EvalParams& params);
+
+}  // namespace nerv
