@@ -1,0 +1,249 @@
+// nerv_up: starts the services a pipeline config describes, keeps them running
+// and shows their health.
+//
+//   nerv_up --config FILE [--lcm-url URL] [--prefix P] [--quiet] [--exit-when-idle S]
+//   nerv_up --status [--lcm-url URL] [--prefix P] [--listen S]
+//
+// The `run:` section of the config says which services to start and how many
+// shards of each (`shards: {stereo_matcher: 2}`). A service that exits is
+// restarted after a back-off that doubles from restart_backoff_s up to
+// restart_backoff_max_s (and resets once it has run for 30 s). A status line
+// per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
+// every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "config.hpp"
+#include "lcm_node.hpp"
+#include "nerv/health_t.hpp"
+
+using namespace nerv;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+volatile sig_atomic_t g_stop = 0;
+void onSignal(int) { g_stop = 1; }
+
+const char* const kServices[] = {"stereo_matcher", "stixel", "snv_extrinsic", "validator"};
+
+struct Child {
+  std::string service, instance;
+  std::vector<std::string> argv;
+  pid_t pid = -1;
+  int restarts = 0;
+  double backoff_s = 0;
+  Clock::time_point started, restart_at;
+};
+
+struct Options {
+  std::string config, lcm_url, prefix, bin_dir;
+  bool status_only = false, quiet = false;
+  double listen_s = 2.0, exit_when_idle_s = 0;
+};
+
+struct HealthBoard {
+  std::map<std::string, health_t> last;  // "service/instance" -> report
+  std::map<std::string, Clock::time_point> seen;
+  void onHealth(const lcm::ReceiveBuffer*, const std::string&, const health_t* h) {
+    const std::string key = h->service + "/" + h->instance;
+    last[key] = *h;
+    seen[key] = Clock::now();
+  }
+  void print(FILE* out) const {
+    for (const auto& [key, h] : last) {
+      const double age = std::chrono::duration<double>(Clock::now() - seen.at(key)).count();
+      std::fprintf(out, "%-26s pid %-7d %-8s in %-6lld out %-6lld dropped %-4lld errors %-4lld p95 %6.1f ms  %5.1f ms/frame%s%s\n",
+                   key.c_str(), h.pid, age > 3 ? "silent" : h.status.c_str(), (long long)h.frames_in,
+                   (long long)h.frames_out, (long long)h.frames_dropped, (long long)h.errors,
+                   h.latency_p95_ms, h.processing_ms, h.last_error.empty() ? "" : "  last: ",
+                   h.last_error.c_str());
+    }
+  }
+};
+
+pid_t spawn(const Child& c) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    std::vector<char*> args;
+    for (const auto& a : c.argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    std::fprintf(stderr, "nerv_up: cannot start %s: %s\n", args[0], std::strerror(errno));
+    _exit(127);
+  }
+  return pid;
+}
+
+int status(const Options& o) {
+  lcm::LCM lcm(o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url);
+  if (!lcm.good()) throw std::runtime_error("LCM cannot start");
+  HealthBoard board;
+  lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
+  const auto end = Clock::now() + std::chrono::duration<double>(o.listen_s);
+  while (Clock::now() < end && !g_stop) lcm.handleTimeout(50);
+  if (board.last.empty()) {
+    std::printf("no NERV_HEALTH heard in %.1f s\n", o.listen_s);
+    return 1;
+  }
+  board.print(stdout);
+  return 0;
+}
+
+int up(const Options& o) {
+  ConfigSection root(loadConfigFile(o.config), "");
+  for (const char* k : {"lcm_url", "channel_prefix", "limits", "stereo_matcher", "stixel",
+                        "snv_extrinsic", "validator", "source"})
+    root.allow(k);
+  ConfigSection run = root.section("run");
+  std::string services_csv = "stereo_matcher,stixel,snv_extrinsic,validator";
+  run.get("services", services_csv);
+  double backoff0 = 0.5, backoff_max = 10;
+  run.get("restart_backoff_s", backoff0, 0.05, 60);
+  run.get("restart_backoff_max_s", backoff_max, 0.05, 600);
+  ConfigSection shards = run.section("shards");
+  std::map<std::string, int> shard_count;
+  for (const char* s : kServices) {
+    shard_count[s] = 1;
+    shards.get(s, shard_count[s], 1, 64);
+  }
+  shards.finish();
+  run.finish();
+  root.finish();
+
+  std::vector<Child> children;
+  std::stringstream list(services_csv);
+  for (std::string s; std::getline(list, s, ',');) {
+    if (!shard_count.count(s)) throw ConfigError("config key 'run.services' names unknown service '" + s + "'");
+    for (int k = 0; k < shard_count[s]; ++k) {
+      Child c;
+      c.service = s;
+      c.instance = shard_count[s] > 1 ? "shard" + std::to_string(k) : "0";
+      c.argv = {o.bin_dir + "/" + s, "--config", o.config};
+      if (!o.lcm_url.empty()) c.argv.insert(c.argv.end(), {"--lcm-url", o.lcm_url});
+      if (!o.prefix.empty()) c.argv.insert(c.argv.end(), {"--prefix", o.prefix});
+      if (shard_count[s] > 1) c.argv.insert(c.argv.end(), {"--shard", std::to_string(k) + "/" + std::to_string(shard_count[s])});
+      if (!std::filesystem::exists(c.argv[0])) throw std::runtime_error("service binary " + c.argv[0] + " is missing");
+      children.push_back(c);
+    }
+  }
+  // Configuration problems show now, once, not as a restart loop.
+  for (const auto& c : children) {
+    std::string cmd = c.argv[0] + " --config '" + o.config + "' --check-config 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    char line[512] = {0};
+    if (p && std::fgets(line, sizeof line, p)) {}
+    if (!p || pclose(p) != 0) throw ConfigError(std::string(line[0] ? line : "config check failed\n").substr(0, std::strlen(line) - 1));
+  }
+
+  const std::string url = o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url;
+  lcm::LCM lcm(url);
+  if (!lcm.good()) throw std::runtime_error("LCM cannot start on " + url);
+  HealthBoard board;
+  lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
+
+  for (auto& c : children) {
+    c.pid = spawn(c);
+    c.started = Clock::now();
+    c.backoff_s = backoff0;
+    std::fprintf(stderr, "nerv_up: started %s/%s (pid %d)\n", c.service.c_str(), c.instance.c_str(), c.pid);
+  }
+  auto last_print = Clock::now();
+  auto last_activity = Clock::now();
+  while (!g_stop) {
+    lcm.handleTimeout(50);
+    for (auto& c : children) {
+      if (c.pid > 0) {
+        int wstatus = 0;
+        if (waitpid(c.pid, &wstatus, WNOHANG) == c.pid) {
+          const double ran = std::chrono::duration<double>(Clock::now() - c.started).count();
+          if (ran > 30) c.backoff_s = backoff0;
+          std::fprintf(stderr, "nerv_up: %s/%s (pid %d) %s %d; restart in %.1f s\n", c.service.c_str(),
+                       c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
+                       WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus), c.backoff_s);
+          c.pid = -1;
+          c.restart_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(c.backoff_s));
+          c.backoff_s = std::min(backoff_max, c.backoff_s * 2);
+        }
+      } else if (Clock::now() >= c.restart_at) {
+        c.pid = spawn(c);
+        c.started = Clock::now();
+        ++c.restarts;
+        std::fprintf(stderr, "nerv_up: restarted %s/%s (pid %d, restart %d)\n", c.service.c_str(),
+                     c.instance.c_str(), c.pid, c.restarts);
+      }
+    }
+    for (const auto& [k, h] : board.last)
+      if (h.status == "ok") last_activity = std::max(last_activity, board.seen[k]);
+    if (!o.quiet && Clock::now() - last_print > std::chrono::seconds(1)) {
+      std::fprintf(stderr, "---\n");
+      board.print(stderr);
+      last_print = Clock::now();
+    }
+    if (o.exit_when_idle_s > 0 &&
+        std::chrono::duration<double>(Clock::now() - last_activity).count() > o.exit_when_idle_s)
+      break;
+  }
+  for (auto& c : children)
+    if (c.pid > 0) kill(c.pid, SIGTERM);
+  const auto deadline = Clock::now() + std::chrono::seconds(3);
+  for (auto& c : children) {
+    while (c.pid > 0) {
+      if (waitpid(c.pid, nullptr, WNOHANG) == c.pid) c.pid = -1;
+      else if (Clock::now() > deadline) {
+        kill(c.pid, SIGKILL);
+        waitpid(c.pid, nullptr, 0);
+        c.pid = -1;
+      } else std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  std::fprintf(stderr, "nerv_up: all services stopped\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  o.bin_dir = std::filesystem::canonical("/proc/self/exe").parent_path().string();
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::runtime_error("flag " + a + " needs a value");
+        return argv[++i];
+      };
+      if (a == "--config") o.config = value();
+      else if (a == "--lcm-url") o.lcm_url = value();
+      else if (a == "--prefix") o.prefix = value();
+      else if (a == "--status") o.status_only = true;
+      else if (a == "--listen") o.listen_s = std::stod(value());
+      else if (a == "--quiet") o.quiet = true;
+      else if (a == "--exit-when-idle") o.exit_when_idle_s = std::stod(value());
+      else throw std::runtime_error("unknown flag '" + a + "'");
+    }
+    struct sigaction sa {};
+    sa.sa_handler = onSignal;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    if (o.status_only) return status(o);
+    if (o.config.empty()) throw std::runtime_error("--config FILE is required");
+    return up(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nerv_up: %s\n", e.what());
+    return 2;
+  }
+}
