@@ -26,6 +26,14 @@ struct Params {
   float group_lateral_gap_m = 0.6f;      // neighbouring stixels farther apart sideways split a box
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak
+  float max_disparity_px = 256.0f;       // disparities at or above are treated as invalid
+  float vd_inlier_tolerance_px = 1.5f;   // v-disparity cells this close to the ground line are inliers
+  int min_ground_rows = 20;              // fewer image rows supporting the ground line = weak fit
+  float min_ground_disparity_span_px = 5.0f;  // ground inliers must span this disparity range
+  float freespace_smoothness_m = 0.05f;  // free-space DP cost per disparity bin of boundary jump
+  int freespace_jump_cap_bins = 4;       // larger boundary jumps cost no more (object edges)
+  float object_depth_tolerance_m = 1.5f; // height segmentation: pixels within this depth of a stixel belong to it
+  float max_stixel_height_m = 10.0f;     // height segmentation looks no higher over the road (poles, trucks)
 };
 
 // Reads the `stixel:` section of a pipeline config into Params (ConfigError on bad keys).

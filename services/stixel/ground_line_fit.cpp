@@ -1,0 +1,166 @@
+#include "ground_line_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "ground_geometry.hpp"
+
+namespace nerv::stixel {
+
+namespace {
+
+struct Cell {
+  float v, d, w;  // row, mean disparity, pixel count
+};
+
+// Strongest cells of each row: the road is the mode of a row's histogram below
+// the horizon, while scattered mismatches spread thinly over many bins.
+std::vector<Cell> votingCells(const VDisparity& vd, int image_width, const GroundLineFitParams& p) {
+  const int min_count = std::max(3, static_cast<int>(p.min_cell_fraction * image_width));
+  std::vector<Cell> cells;
+  std::vector<std::pair<int, int>> row;  // (count, bin)
+  for (int v = 0; v < vd.rows; ++v) {
+    row.clear();
+    for (int k = 1; k < vd.bins; ++k) {  // bin 0 (d < 1 px) carries no slope information
+      const int c = vd.cellCount(v, k);
+      if (c >= min_count) row.emplace_back(c, k);
+    }
+    const int keep = std::min<int>(p.max_cells_per_row, static_cast<int>(row.size()));
+    std::partial_sort(row.begin(), row.begin() + keep, row.end(),
+                      [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (int i = 0; i < keep; ++i)
+      cells.push_back({static_cast<float>(v), vd.cellMean(v, row[i].second),
+                       static_cast<float>(row[i].first)});
+  }
+  return cells;
+}
+
+// Weighted least squares d = a*v + b.
+bool solveLine(const std::vector<Cell>& c, const std::vector<float>& w, float& a, float& b) {
+  double sw = 0, sv = 0, sd = 0, svv = 0, svd = 0;
+  for (size_t i = 0; i < c.size(); ++i) {
+    if (w[i] <= 0) continue;
+    sw += w[i];
+    sv += w[i] * c[i].v;
+    sd += w[i] * c[i].d;
+    svv += w[i] * c[i].v * c[i].v;
+    svd += w[i] * c[i].v * c[i].d;
+  }
+  const double det = sw * svv - sv * sv;
+  if (sw <= 0 || std::abs(det) < 1e-9 * sw * sw) return false;
+  a = static_cast<float>((sw * svd - sv * sd) / det);
+  b = static_cast<float>((sd - a * sv) / sw);
+  return true;
+}
+
+}  // namespace
+
+GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
+                         const GroundLineFitParams& p) {
+  GroundLine out;
+  const std::vector<Cell> cells = votingCells(vd, cam.width, p);
+  if (cells.size() < 2) {
+    out.reason = "too few v-disparity cells";
+    return out;
+  }
+
+  // Hough space (slope a, horizon row vh) with d = a*(v - vh), bounded by the pose
+  // limits: a = fx*B*cos(theta)/(fy*h) and vh = cy - fy*tan(theta).
+  const double max_t = p.max_pitch_deg * M_PI / 180.0;
+  const double k = cam.fx * cam.baseline_m / cam.fy;
+  const double a_min = k * std::cos(max_t) / p.max_camera_height_m;
+  const double a_max = k / p.min_camera_height_m;
+  const double vh_min = cam.cy - cam.fy * std::tan(max_t);
+  const double vh_max = cam.cy + cam.fy * std::tan(max_t);
+  // Slope steps fine enough that a line drifts < 1 px over the image height.
+  const int na = std::clamp(static_cast<int>((a_max - a_min) * vd.rows) + 1, 32, 512);
+  const int nh = std::max(3, static_cast<int>(std::ceil(vh_max - vh_min)) + 1);
+  std::vector<float> acc(static_cast<size_t>(na) * nh, 0.0f);
+  std::vector<double> inv_a(na);
+  for (int i = 0; i < na; ++i) inv_a[i] = 1.0 / (a_min + (a_max - a_min) * i / (na - 1));
+  for (const Cell& c : cells) {
+    for (int i = 0; i < na; ++i) {
+      const int j = static_cast<int>(std::lround(c.v - c.d * inv_a[i] - vh_min));
+      if (j >= 0 && j < nh) acc[static_cast<size_t>(i) * nh + j] += c.w;
+    }
+  }
+  // 3x3 box sum: a cell's 1 px disparity quantisation scatters its vote over
+  // neighbouring horizon bins.
+  float best = 0;
+  int bi = -1, bj = -1;
+  for (int i = 1; i + 1 < na; ++i)
+    for (int j = 1; j + 1 < nh; ++j) {
+      float s = 0;
+      for (int di = -1; di <= 1; ++di)
+        for (int dj = -1; dj <= 1; ++dj) s += acc[static_cast<size_t>(i + di) * nh + j + dj];
+      if (s > best) best = s, bi = i, bj = j;
+    }
+  if (bi < 0) {
+    out.reason = "no Hough peak";
+    return out;
+  }
+  float a = static_cast<float>(1.0 / inv_a[bi]);
+  float b = static_cast<float>(-a * (vh_min + bj));
+
+  // IRLS with Huber weights on the cells near the current line; the band shrinks
+  // from twice the tolerance so a coarse Hough peak still captures the road.
+  std::vector<float> w(cells.size());
+  const float huber_px = 0.5f;
+  for (int it = 0; it < 8; ++it) {
+    const float band = it == 0 ? 2 * p.inlier_tolerance_px : p.inlier_tolerance_px;
+    for (size_t i = 0; i < cells.size(); ++i) {
+      const float r = std::abs(cells[i].d - (a * cells[i].v + b));
+      w[i] = r > band ? 0.0f : cells[i].w * (r <= huber_px ? 1.0f : huber_px / r);
+    }
+    float na_, nb_;
+    if (!solveLine(cells, w, na_, nb_)) break;
+    const bool settled = std::abs(na_ - a) < 1e-6f && std::abs(nb_ - b) < 1e-4f;
+    a = na_, b = nb_;
+    if (settled) break;
+  }
+
+  // Support of the final line.
+  double sw = 0, sr2 = 0;
+  float dmin = 1e30f, dmax = -1e30f;
+  int last_row = -1;
+  for (const Cell& c : cells) {
+    const float r = c.d - (a * c.v + b);
+    if (std::abs(r) > p.inlier_tolerance_px) continue;
+    ++out.inlier_cells;
+    if (static_cast<int>(c.v) != last_row) ++out.inlier_rows, last_row = static_cast<int>(c.v);
+    sw += c.w;
+    sr2 += c.w * r * r;
+    dmin = std::min(dmin, c.d);
+    dmax = std::max(dmax, c.d);
+  }
+  out.slope = a;
+  out.intercept = b;
+  out.residual_px = sw > 0 ? static_cast<float>(std::sqrt(sr2 / sw)) : 0.0f;
+
+  if (!(a > 0) || !std::isfinite(b)) {
+    out.reason = "ground line has no positive slope";
+    return out;
+  }
+  if (out.inlier_rows < p.min_inlier_rows) {
+    out.reason = "ground line supported by only " + std::to_string(out.inlier_rows) + " rows";
+    return out;
+  }
+  if (dmax - dmin < p.min_disparity_span_px) {
+    out.reason = "ground inliers span too small a disparity range";
+    return out;
+  }
+  const LinePose pose = poseFromGroundLine(a, b, cam);
+  if (!(pose.height_m >= p.min_camera_height_m && pose.height_m <= p.max_camera_height_m)) {
+    out.reason = "ground line implies camera height " + std::to_string(pose.height_m) + " m";
+    return out;
+  }
+  if (!(std::abs(pose.pitch_deg) <= p.max_pitch_deg)) {
+    out.reason = "ground line implies pitch " + std::to_string(pose.pitch_deg) + " deg";
+    return out;
+  }
+  out.ok = true;
+  return out;
+}
+
+}  // namespace nerv::stixel

@@ -1,0 +1,81 @@
+#include "hypothesis_grouping.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nerv::stixel {
+
+namespace {
+
+// Depth and lateral gap are measured between a stixel and the nearest-in-depth of
+// the group's last two members, so one stray stixel inside an object (a window,
+// a reflection) does not cut it in two.
+bool joins(const std::vector<const Stixel*>& group, const Stixel& s, const StereoCamera& cam,
+           const GroupingParams& p) {
+  const size_t n = group.size();
+  for (size_t i = n; i-- > 0 && i + 2 >= n;) {
+    const Stixel& g = *group[i];
+    const float dz = std::abs(g.depth_m - s.depth_m);
+    const float z = std::min(g.depth_m, s.depth_m);
+    const float gap_px = static_cast<float>(s.u - (g.u + g.width));
+    const float lateral_m = std::max(0.0f, gap_px) * z / static_cast<float>(cam.fx);
+    if (dz <= p.group_depth_gap_m && lateral_m <= p.group_lateral_gap_m) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
+                                     const GroupingParams& p) {
+  std::vector<std::vector<const Stixel*>> groups;
+  for (const Stixel& s : stixels) {
+    if (!groups.empty() && joins(groups.back(), s, cam, p))
+      groups.back().push_back(&s);
+    else
+      groups.push_back({&s});
+  }
+
+  std::vector<Hypothesis> out;
+  std::vector<float> disp;
+  for (const auto& g : groups) {
+    if (static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) continue;
+    int x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
+    int y0 = g.front()->top_row, y1 = g.front()->bottom_row;
+    disp.clear();
+    for (const Stixel* s : g) {
+      x0 = std::min(x0, s->u);
+      x1 = std::max(x1, s->u + s->width);
+      y0 = std::min(y0, s->top_row);
+      y1 = std::max(y1, s->bottom_row);
+      disp.push_back(s->disparity);
+    }
+    // Representative disparity: the median stixel (robust to one wrong stixel).
+    std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
+    const float d = disp[disp.size() / 2];
+    const double z = cam.depthFromDisparity(d);
+    // Base centre: the box's middle column on the ground below the median stixel.
+    double foot_v = 0;
+    for (const Stixel* s : g)
+      if (s->disparity == d) foot_v = s->bottom_row;
+    const Point3 base = cam.toPoint(0.5 * (x0 + x1), foot_v, d);
+
+    Hypothesis hy;
+    hy.box = {x0, y0, x1 - x0, y1 - y0 + 1};
+    hy.x_m = static_cast<float>(base.x);
+    hy.y_m = static_cast<float>(base.y);
+    hy.z_m = static_cast<float>(base.z);
+    hy.width_m = static_cast<float>((x1 - x0) * z / cam.fx);
+    hy.height_m = static_cast<float>((y1 - y0 + 1) * z / cam.fy);
+    hy.distance_m =
+        static_cast<float>(std::sqrt(base.x * base.x + base.y * base.y + base.z * base.z));
+    hy.disparity = d;
+    hy.num_stixels = static_cast<int>(g.size());
+    if (hy.height_m < p.min_obstacle_height_m || hy.distance_m > p.max_distance_m) continue;
+    hy.id = static_cast<int>(out.size());
+    out.push_back(hy);
+  }
+  return out;
+}
+
+}  // namespace nerv::stixel

@@ -1,0 +1,89 @@
+// Composes the stixel stage: v-disparity -> ground line -> occupancy and free
+// space -> stixels -> hypotheses (NERV reference slides 3, 10).
+#include "stixel_estimator.hpp"
+
+#include <stdexcept>
+
+#include "free_space.hpp"
+#include "ground_geometry.hpp"
+#include "ground_line_fit.hpp"
+#include "hypothesis_grouping.hpp"
+#include "stixel_extraction.hpp"
+#include "v_disparity.hpp"
+
+namespace nerv::stixel {
+
+namespace {
+
+GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, const Params& p,
+                           const GroundPrior& prior) {
+  GroundLineFitParams fp;
+  fp.min_camera_height_m = p.min_camera_height_m;
+  fp.max_camera_height_m = p.max_camera_height_m;
+  fp.max_pitch_deg = p.max_pitch_deg;
+  fp.inlier_tolerance_px = p.vd_inlier_tolerance_px;
+  fp.min_inlier_rows = p.min_ground_rows;
+  fp.min_disparity_span_px = p.min_ground_disparity_span_px;
+  const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px);
+  const GroundLine line = fitGroundLine(vd, cam, fp);
+  if (line.ok) {
+    GroundModel g = groundModelFromLine(line.slope, line.intercept, cam, "v_disparity");
+    g.inliers = line.inlier_cells;
+    g.residual_px = line.residual_px;
+    return g;
+  }
+  // A weak fit never invents a road: the prior pose or an explicit "none".
+  if (prior.valid && p.use_extrinsics_prior && prior.height_m > 0) {
+    float a = 0, b = 0;
+    groundLineFromPose(prior.pitch_deg, prior.height_m, cam, a, b);
+    GroundModel g = groundModelFromLine(a, b, cam, "extrinsics_prior");
+    g.roll_deg = prior.roll_deg;
+    return g;
+  }
+  return GroundModel{};
+}
+
+}  // namespace
+
+StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
+                             const Params& params, const GroundPrior& prior) {
+  if (!disparity.empty() && disparity.type() != CV_32F)
+    throw std::invalid_argument("estimateStixels: disparity must be CV_32F");
+  if (!disparity.empty() && (disparity.cols != cam.width || disparity.rows != cam.height))
+    throw std::invalid_argument("estimateStixels: disparity size does not match the camera");
+  const std::string problem = cam.problem();
+  if (!problem.empty()) throw std::invalid_argument("estimateStixels: camera: " + problem);
+
+  StixelResult result;
+  if (disparity.empty()) return result;
+  result.ground = estimateGround(disparity, cam, params, prior);
+  if (!result.ground.valid) return result;
+
+  StixelExtractionParams ep;
+  FreeSpaceParams& fs = ep.free_space;
+  fs.column_width_px = params.column_width_px;
+  fs.ground_tolerance_m = params.ground_tolerance_m;
+  fs.max_height_above_ground_m = params.max_height_above_ground_m;
+  fs.min_obstacle_height_m = params.min_obstacle_height_m;
+  fs.max_distance_m = params.max_distance_m;
+  fs.max_disparity_px = params.max_disparity_px;
+  fs.smoothness_m = params.freespace_smoothness_m;
+  fs.jump_cap_bins = params.freespace_jump_cap_bins;
+  ep.object_depth_tolerance_m = params.object_depth_tolerance_m;
+  ep.max_stixel_height_m = params.max_stixel_height_m;
+
+  const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
+  const std::vector<int> boundary = solveFreeSpace(grid, fs);
+  result.stixels = extractStixels(disparity, cam, result.ground, boundary, ep);
+
+  GroupingParams gp;
+  gp.group_depth_gap_m = params.group_depth_gap_m;
+  gp.group_lateral_gap_m = params.group_lateral_gap_m;
+  gp.min_stixels_per_hypothesis = params.min_stixels_per_hypothesis;
+  gp.min_obstacle_height_m = params.min_obstacle_height_m;
+  gp.max_distance_m = params.max_distance_m;
+  result.hypotheses = groupStixels(result.stixels, cam, gp);
+  return result;
+}
+
+}  // namespace nerv::stixel

@@ -1,0 +1,93 @@
+#include "stixel_extraction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ground_geometry.hpp"
+
+namespace nerv::stixel {
+
+int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_tolerance_m,
+                  int u0, int u1, int foot_row, int limit_row, float d, float tolerance_px) {
+  int best_row = foot_row;
+  int sum = 0, best = 0;
+  const float h = g.height_m;
+  for (int v = foot_row; v >= limit_row; --v) {
+    const float* row = disparity.ptr<float>(v);
+    // Road at this row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
+    const float road_max = h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m);
+    for (int u = u0; u < u1; ++u) {
+      const float x = row[u];
+      if (!(x > 0.0f) || !std::isfinite(x) || x <= road_max) continue;
+      sum += std::abs(x - d) <= tolerance_px ? 1 : -1;
+    }
+    if (sum > best) best = sum, best_row = v;
+  }
+  return best_row;
+}
+
+std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,
+                                   const GroundModel& g, const std::vector<int>& boundary,
+                                   const StixelExtractionParams& p) {
+  const FreeSpaceParams& fs = p.free_space;
+  const int cw = std::max(1, fs.column_width_px);
+  const int rows = disparity.rows;
+  const float a = g.vd_slope, b = g.vd_intercept, h = g.height_m;
+  // Row where a point of disparity d has height `height_m` over the road:
+  // h*(d - dg(v))/d = height_m  <=>  dg(v) = d*(1 - height_m/h).
+  auto rowAtHeight = [&](float d, float height_m) { return (d * (1.0f - height_m / h) - b) / a; };
+  const double fb = cam.fx * cam.baseline_m;
+
+  std::vector<float> samples;
+  std::vector<Stixel> out;
+  for (size_t s = 0; s < boundary.size(); ++s) {
+    const int k = boundary[s];
+    if (k < 0) continue;
+    const int u0 = static_cast<int>(s) * cw;
+    const int u1 = std::min(disparity.cols, u0 + cw);
+    const int hw = obstacleHalfWindow(k);
+    const float dlo = static_cast<float>(std::max(k - hw, 0)), dhi = static_cast<float>(k + hw + 1);
+
+    // Robust disparity: median of the strip's obstacle pixels in the boundary window.
+    const int v_from = std::clamp(static_cast<int>(std::floor(rowAtHeight(dhi, fs.max_height_above_ground_m))), 0, rows - 1);
+    const int v_to = std::clamp(static_cast<int>(std::ceil(rowAtHeight(dlo, 0.0f))), 0, rows - 1);
+    samples.clear();
+    for (int v = v_from; v <= v_to; ++v) {
+      const float* row = disparity.ptr<float>(v);
+      for (int u = u0; u < u1; ++u) {
+        const float d = row[u];
+        if (!(d >= dlo && d < dhi)) continue;
+        const float hg = heightAboveGround(g, static_cast<float>(v), d);
+        if (hg > fs.ground_tolerance_m && hg < fs.max_height_above_ground_m) samples.push_back(d);
+      }
+    }
+    if (samples.empty()) continue;
+    auto mid = samples.begin() + samples.size() / 2;
+    std::nth_element(samples.begin(), mid, samples.end());
+    const float d = *mid;
+
+    const int foot = std::clamp(static_cast<int>(std::lround((d - b) / a)), 0, rows - 1);
+    const int limit = std::clamp(static_cast<int>(std::ceil(rowAtHeight(d, p.max_stixel_height_m))), 0, foot);
+    const double z = fb / d;
+    const float tol_px = std::max(1.0f, static_cast<float>(d * d * p.object_depth_tolerance_m / fb));
+    const int top = segmentTopRow(disparity, g, fs.ground_tolerance_m, u0, u1, foot, limit, d, tol_px);
+    const double height_m = (foot - top + 1) * z / cam.fy;
+    if (height_m < fs.min_obstacle_height_m) continue;
+
+    Stixel st;
+    st.u = u0;
+    st.width = u1 - u0;
+    st.top_row = top;
+    st.bottom_row = foot;
+    st.disparity = d;
+    st.depth_m = static_cast<float>(z);
+    const Point3 base = cam.toPoint(0.5 * (u0 + u1), foot, d);
+    st.base_x_m = static_cast<float>(base.x);
+    st.base_y_m = static_cast<float>(base.y);
+    st.base_z_m = static_cast<float>(base.z);
+    out.push_back(st);
+  }
+  return out;
+}
+
+}  // namespace nerv::stixel

@@ -1,0 +1,36 @@
+// Stixels from the free-space boundary: a robust disparity per strip, its foot
+// on the ground line and its top by height segmentation (Badino et al. 2009).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "free_space.hpp"
+#include "perception_types.hpp"
+#include "stereo_camera.hpp"
+
+namespace nerv::stixel {
+
+struct StixelExtractionParams {
+  FreeSpaceParams free_space;
+  float object_depth_tolerance_m = 1.5f;  // pixels within this depth of the stixel belong to it
+  float max_stixel_height_m = 10.0f;      // the top search stops this high over the road
+};
+
+// Top row by height segmentation. Scanning up from the foot, each pixel of the
+// strip scores +1 when its disparity is within tolerance_px of the stixel's and it
+// stands above the road tolerance, 0 when it is invalid or road, -1 otherwise
+// (background or occluder); the top is the row maximising the summed score from the
+// foot up (a maximum-subarray cut: a few mismatched rows do not end the obstacle,
+// a background region does). The top may rise above the sky cut of the occupancy
+// (trucks, poles are taller than it).
+int segmentTopRow(const cv::Mat& disparity, const GroundModel& ground, float ground_tolerance_m,
+                  int u0, int u1, int foot_row, int limit_row, float d, float tolerance_px);
+
+// boundary: bin per strip from solveFreeSpace (-1 = none).
+std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,
+                                   const GroundModel& ground, const std::vector<int>& boundary,
+                                   const StixelExtractionParams& p);
+
+}  // namespace nerv::stixel

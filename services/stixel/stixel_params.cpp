@@ -1,0 +1,35 @@
+// readParams: the `stixel:` config section, one key per Params field.
+#include "stixel_estimator.hpp"
+
+namespace nerv::stixel {
+
+Params readParams(ConfigSection& c) {
+  Params p;
+  c.get("column_width_px", p.column_width_px, 1, 64);
+  c.get("max_height_above_ground_m", p.max_height_above_ground_m, 0.1, 20.0);
+  c.get("ground_tolerance_m", p.ground_tolerance_m, 0.0, 1.0);
+  c.get("min_obstacle_height_m", p.min_obstacle_height_m, 0.0, 5.0);
+  c.get("max_distance_m", p.max_distance_m, 1.0, 500.0);
+  c.get("min_camera_height_m", p.min_camera_height_m, 0.1, 10.0);
+  c.get("max_camera_height_m", p.max_camera_height_m, 0.1, 10.0);
+  c.get("max_pitch_deg", p.max_pitch_deg, 0.0, 45.0);
+  c.get("group_depth_gap_m", p.group_depth_gap_m, 0.0, 100.0);
+  c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
+  c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
+  c.get("use_extrinsics_prior", p.use_extrinsics_prior);
+  c.get("max_disparity_px", p.max_disparity_px, 1.0, 4096.0);
+  c.get("vd_inlier_tolerance_px", p.vd_inlier_tolerance_px, 0.1, 20.0);
+  c.get("min_ground_rows", p.min_ground_rows, 2, 100000);
+  c.get("min_ground_disparity_span_px", p.min_ground_disparity_span_px, 0.0, 1000.0);
+  c.get("freespace_smoothness_m", p.freespace_smoothness_m, 0.0, 10.0);
+  c.get("freespace_jump_cap_bins", p.freespace_jump_cap_bins, 1, 1000);
+  c.get("object_depth_tolerance_m", p.object_depth_tolerance_m, 0.01, 100.0);
+  c.get("max_stixel_height_m", p.max_stixel_height_m, 0.1, 100.0);
+  if (p.min_camera_height_m >= p.max_camera_height_m)
+    throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
+  if (p.ground_tolerance_m >= p.min_camera_height_m)
+    throw ConfigError("config key '" + c.path() + ".ground_tolerance_m' must be below min_camera_height_m");
+  return p;
+}
+
+}  // namespace nerv::stixel
