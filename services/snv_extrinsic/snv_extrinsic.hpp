@@ -8,6 +8,7 @@
 
 #include "config.hpp"
 #include "perception_types.hpp"
+#include "pose_filter.hpp"
 #include "stereo_camera.hpp"
 
 namespace nerv::snv {
@@ -19,6 +20,39 @@ struct Params {
   float mean_shift_fraction = 0.5f;    // adaptive radius holds this fraction of the vectors
   float ground_tolerance_deg = 15.0f;  // normal within this of the ground normal = ground-like
   float filter_process_var_deg2 = 0.05f;  // temporal filter: pitch random walk per frame
+
+  // Integral-image normals (integral_normals.hpp).
+  float depth_change_px = 1.0f;      // disparity jump between neighbours that is a discontinuity [px]
+  float depth_change_rel = 0.05f;    // ... or this share of the disparity, whichever is larger
+  float window_base_px = 6.0f;       // depth-dependent window T = base + per_m * Z [px]
+  float window_px_per_m = 0.2f;      // growth of T with depth [px/m]
+  int max_radius_px = 8;             // cap of the adaptive radius r [px]
+  bool smooth_disparity = true;      // box-smooth disparity (exact on planes) instead of depth
+
+  // Ground samples (ground_samples.hpp).
+  float ground_max_depth_m = 30.0f;      // farther road normals are too noisy to use [m]
+  float ground_min_depth_m = 2.0f;       // nearer samples are ignored [m]
+  float ground_disparity_tol_px = 1.0f;  // |d - d_ground(v)| for a ground sample [px]
+  float ground_disparity_tol_rel = 0.05f;// ... or this share of d_ground(v)
+  float ground_prior_cone_deg = 20.0f;   // ground normals lie within this of the camera's -y [deg]
+  int ground_lower_margin_px = 10;       // without a ground model: rows below cy + this [px]
+  int min_ground_normals = 50;           // fewer ground normals: no pose ("no_ground")
+
+  // Pose quality and filter.
+  float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this
+  float min_confidence = 0.05f;          // below: status "low_confidence", pose not used
+  float min_height_m = 0.3f;             // heights outside [min, max] are rejected [m]
+  float max_height_m = 5.0f;
+  float filter_roll_process_var_deg2 = 0.05f;   // roll random walk per frame [deg^2]
+  float filter_height_process_var_m2 = 1e-4f;   // height random walk per frame [m^2]
+  float filter_pitch_meas_var_deg2 = 0.04f;     // one frame's pitch variance [deg^2]
+  float filter_roll_meas_var_deg2 = 0.04f;      // one frame's roll variance [deg^2]
+  float filter_height_meas_var_m2 = 4e-4f;      // one frame's height variance [m^2]
+
+  // ROI classes (roi_normal_stats.hpp).
+  float upright_tolerance_deg = 30.0f;          // 90 +- this from the ground normal = upright
+  float facing_cone_deg = 10.0f;                // within this of the reversed viewing ray = facing
+  float upright_consistency_fraction = 0.15f;   // upright share that makes facing normals object-like
 };
 
 Params readParams(ConfigSection& section);
@@ -42,8 +76,7 @@ class SnvExtrinsicEstimator {
 
  private:
   Params params_;
-  struct FilterState { bool initialised = false; float pitch = 0, roll = 0, height = 0, var = 1; };
-  FilterState filter_;
+  PoseFilter filter_;
 };
 
 }  // namespace nerv::snv

@@ -1,0 +1,85 @@
+// Surface normals from integral images (Holzer et al., "Adaptive Neighborhood
+// Selection for Real-Time Surface Normal Estimation from Organized Point Cloud
+// Data Using Integral Images", IROS 2012; NERV slides 15-19).
+//
+// S(I,m,n,r) = box mean of I over the (2r+1)x(2r+1) window centred on (m,n),
+// read from an integral image in O(1). The smoothed point at a pixel is its
+// viewing ray scaled by the smoothed depth: P~(m,n) = (P_x/P_z, P_y/P_z, 1) * Z~,
+// so P~_x and P~_y differences carry the smoothing of P_z (raw P_x, P_y of
+// stereo carry the full depth noise). Tangents over the baseline 2r:
+//   u = P~(m+r,n) - P~(m-r,n)   (horizontal)   v = P~(m,n+r) - P~(m,n-r)  (vertical)
+// N = v x u (unit, facing the camera: N . P < 0).
+// Adaptive window: r = min(floor((B-1)/2), floor(T/2), cap) where B is the
+// chessboard distance to the nearest depth-change edge or invalid pixel (all
+// smoothing windows, which reach 2r from the centre, then stay on one surface)
+// and T = window_base_px + window_px_per_m * Z grows with depth (stereo depth
+// noise grows with Z^2). A pixel whose r < 1 has no normal.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <climits>
+
+#include "stereo_camera.hpp"
+
+namespace nerv::snv {
+
+struct IntegralNormalParams {
+  float depth_change_px = 1.0f;    // neighbours differing by more disparity are a discontinuity [px]
+  float depth_change_rel = 0.05f;  // ... or by more than this share of their disparity
+  float window_base_px = 6.0f;     // T = window_base_px + window_px_per_m * Z [px]
+  float window_px_per_m = 0.2f;    // growth of T with depth [px/m]
+  int max_radius_px = 8;           // hard cap of r [px]
+  bool smooth_disparity = true;    // smooth disparity (exact on planes) rather than P_z (Holzer)
+};
+
+// A grid of normals: normals(j, i) belongs to pixel (u = i*interval, v = j*interval).
+struct NormalMap {
+  int interval_px = 1;
+  cv::Mat normals;  // CV_32FC3 unit normals (x, y, z), NaN where there is no normal
+};
+
+// Integral images of one disparity map (or a band of its rows) from which the
+// normal at any pixel is read in O(1). Shared by the full-frame map and the
+// local (ROI / ground) normals so both give identical vectors.
+class IntegralNormalField {
+ public:
+  // Prepares rows [row_begin, row_end) (clamped to the image). disparity: CV_32F, <= 0 invalid.
+  void prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
+               int row_begin = 0, int row_end = INT_MAX);
+
+  int rowBegin() const { return row0_; }
+  int rowEnd() const { return row1_; }
+  bool empty() const { return disparity_.empty(); }
+  int cols() const { return disparity_.cols; }
+
+  // Largest radius allowed by depth (T) and borders alone; 0 where the pixel is invalid.
+  int depthRadius(int u, int v) const;
+  // Adaptive radius min(B, T) found from the edge integral image (shrinks until no
+  // discontinuity lies in the 4r+1 window); 0 = no normal.
+  int adaptiveRadius(int u, int v) const;
+  // Normal with a given radius (r >= 1, windows inside the band); false when a
+  // smoothed depth is not positive.
+  bool normalAt(int u, int v, int r, cv::Vec3f& n) const;
+  // Chessboard distance of every pixel in the band to the nearest edge (CV_32F, band rows).
+  cv::Mat edgeDistance() const;
+
+ private:
+  double boxSum(const cv::Mat& integral, int u, int v, int r) const;
+  float smoothedDepth(int u, int v, int r) const;
+
+  cv::Mat disparity_;      // the caller's map (header only)
+  cv::Mat value_integral_; // CV_64F integral of disparity (or depth), invalid = 0, band rows
+  cv::Mat edge_;           // CV_8U, 1 = edge/invalid, band rows
+  cv::Mat edge_integral_;  // CV_32S integral of edge_
+  StereoCamera cam_;
+  IntegralNormalParams params_;
+  int row0_ = 0, row1_ = 0;
+  float fb_ = 0, inv_fx_ = 0, inv_fy_ = 0;
+};
+
+// Full-frame SNV map at any interval: B from a distance transform of the edge map.
+NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
+                           const IntegralNormalParams& params, int interval_px);
+
+}  // namespace nerv::snv

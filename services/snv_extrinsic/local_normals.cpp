@@ -1,0 +1,44 @@
+#include "local_normals.hpp"
+
+#include <algorithm>
+
+namespace nerv::snv {
+namespace {
+
+int firstGrid(int from, int interval) { return (from + interval - 1) / interval * interval; }
+
+}  // namespace
+
+int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, int interval_px,
+                       std::vector<LocalNormal>& out) {
+  CV_Assert(interval_px >= 1);
+  if (field.empty() || rect.width <= 0 || rect.height <= 0) return 0;
+  // Samples live in the prepared band (the caller sizes it with rowBandFor()).
+  const int u0 = firstGrid(std::max(rect.x, 0), interval_px);
+  const int v0 = firstGrid(std::max(rect.y, field.rowBegin()), interval_px);
+  const int u1 = std::min(rect.x + rect.width, field.cols());
+  const int v1 = std::min(rect.y + rect.height, field.rowEnd());
+  int samples = 0;
+  for (int v = v0; v < v1; v += interval_px)
+    for (int u = u0; u < u1; u += interval_px) {
+      ++samples;
+      const int r = field.adaptiveRadius(u, v);
+      cv::Vec3f n;
+      if (r >= 1 && field.normalAt(u, v, r, n)) out.push_back({u, v, n});
+    }
+  return samples;
+}
+
+cv::Range rowBandFor(const std::vector<cv::Rect>& rects, int image_rows, int max_radius_px) {
+  int lo = image_rows, hi = 0;
+  for (const cv::Rect& r : rects) {
+    if (r.width <= 0 || r.height <= 0) continue;
+    lo = std::min(lo, r.y);
+    hi = std::max(hi, r.y + r.height);
+  }
+  if (lo >= hi) return cv::Range(0, 0);
+  const int margin = 2 * max_radius_px + 1;
+  return cv::Range(std::clamp(lo - margin, 0, image_rows), std::clamp(hi + margin, 0, image_rows));
+}
+
+}  // namespace nerv::snv

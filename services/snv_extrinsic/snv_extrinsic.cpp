@@ -1,0 +1,228 @@
+#include "snv_extrinsic.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+#include "adaptive_mean_shift.hpp"
+#include "camera_height.hpp"
+#include "entropy.hpp"
+#include "ground_samples.hpp"
+#include "integral_normals.hpp"
+#include "local_normals.hpp"
+#include "roi_normal_stats.hpp"
+#include "super_snv.hpp"
+
+namespace nerv::snv {
+namespace {
+
+IntegralNormalParams normalParams(const Params& p) {
+  IntegralNormalParams n;
+  n.depth_change_px = p.depth_change_px;
+  n.depth_change_rel = p.depth_change_rel;
+  n.window_base_px = p.window_base_px;
+  n.window_px_per_m = p.window_px_per_m;
+  n.max_radius_px = p.max_radius_px;
+  n.smooth_disparity = p.smooth_disparity;
+  return n;
+}
+
+GroundSampleParams groundParams(const Params& p) {
+  GroundSampleParams g;
+  g.max_depth_m = p.ground_max_depth_m;
+  g.min_depth_m = p.ground_min_depth_m;
+  g.disparity_tol_px = p.ground_disparity_tol_px;
+  g.disparity_tol_rel = p.ground_disparity_tol_rel;
+  g.prior_cone_deg = p.ground_prior_cone_deg;
+  g.lower_margin_px = p.ground_lower_margin_px;
+  return g;
+}
+
+PoseFilterParams filterParams(const Params& p) {
+  PoseFilterParams f;
+  f.pitch_process_var_deg2 = p.filter_process_var_deg2;
+  f.roll_process_var_deg2 = p.filter_roll_process_var_deg2;
+  f.height_process_var_m2 = p.filter_height_process_var_m2;
+  f.pitch_measurement_var_deg2 = p.filter_pitch_meas_var_deg2;
+  f.roll_measurement_var_deg2 = p.filter_roll_meas_var_deg2;
+  f.height_measurement_var_m2 = p.filter_height_meas_var_m2;
+  return f;
+}
+
+RoiStatsParams roiParams(const Params& p) {
+  RoiStatsParams r;
+  r.ground_tolerance_deg = p.ground_tolerance_deg;
+  r.upright_tolerance_deg = p.upright_tolerance_deg;
+  r.facing_cone_deg = p.facing_cone_deg;
+  r.upright_consistency_fraction = p.upright_consistency_fraction;
+  return r;
+}
+
+// Super-SNV on one angle: histogram mode -> adaptive mean shift.
+struct AngleEstimate {
+  float mode = 0, mean = 0;
+  MeanShiftResult shift;
+};
+
+AngleEstimate estimateAngle(std::vector<float>& values, const Params& p) {
+  AngleEstimate e;
+  e.mode = buildAngleHistogram(values, p.histogram_bin_deg).modeDeg();
+  e.mean = static_cast<float>(std::accumulate(values.begin(), values.end(), 0.0) / values.size());
+  std::sort(values.begin(), values.end());
+  e.shift = adaptiveMeanShift(values, e.mode, p.mean_shift_fraction, p.mean_shift_stop_deg);
+  return e;
+}
+
+}  // namespace
+
+Params readParams(ConfigSection& s) {
+  Params p;
+  s.get("interval_px", p.interval_px, 1, 64);
+  s.get("histogram_bin_deg", p.histogram_bin_deg, 0.001, 5.0);
+  s.get("mean_shift_stop_deg", p.mean_shift_stop_deg, 1e-5, 1.0);
+  s.get("mean_shift_fraction", p.mean_shift_fraction, 0.05, 1.0);
+  s.get("ground_tolerance_deg", p.ground_tolerance_deg, 0.5, 60.0);
+  s.get("filter_process_var_deg2", p.filter_process_var_deg2, 0.0, 100.0);
+  s.get("depth_change_px", p.depth_change_px, 0.01, 100.0);
+  s.get("depth_change_rel", p.depth_change_rel, 0.0, 1.0);
+  s.get("window_base_px", p.window_base_px, 2.0, 200.0);
+  s.get("window_px_per_m", p.window_px_per_m, 0.0, 10.0);
+  s.get("max_radius_px", p.max_radius_px, 1, 50);
+  s.get("smooth_disparity", p.smooth_disparity);
+  s.get("ground_max_depth_m", p.ground_max_depth_m, 1.0, 200.0);
+  s.get("ground_min_depth_m", p.ground_min_depth_m, 0.0, 50.0);
+  s.get("ground_disparity_tol_px", p.ground_disparity_tol_px, 0.0, 50.0);
+  s.get("ground_disparity_tol_rel", p.ground_disparity_tol_rel, 0.0, 1.0);
+  s.get("ground_prior_cone_deg", p.ground_prior_cone_deg, 1.0, 60.0);
+  s.get("ground_lower_margin_px", p.ground_lower_margin_px, -2000, 2000);
+  s.get("min_ground_normals", p.min_ground_normals, 1, 10000000);
+  s.get("entropy_full_scale_bits", p.entropy_full_scale_bits, 0.1, 30.0);
+  s.get("min_confidence", p.min_confidence, 0.0, 1.0);
+  s.get("min_height_m", p.min_height_m, 0.0, 100.0);
+  s.get("max_height_m", p.max_height_m, 0.0, 100.0);
+  s.get("filter_roll_process_var_deg2", p.filter_roll_process_var_deg2, 0.0, 100.0);
+  s.get("filter_height_process_var_m2", p.filter_height_process_var_m2, 0.0, 10.0);
+  s.get("filter_pitch_meas_var_deg2", p.filter_pitch_meas_var_deg2, 1e-8, 100.0);
+  s.get("filter_roll_meas_var_deg2", p.filter_roll_meas_var_deg2, 1e-8, 100.0);
+  s.get("filter_height_meas_var_m2", p.filter_height_meas_var_m2, 1e-10, 10.0);
+  s.get("upright_tolerance_deg", p.upright_tolerance_deg, 0.5, 89.0);
+  s.get("facing_cone_deg", p.facing_cone_deg, 0.0, 89.0);
+  s.get("upright_consistency_fraction", p.upright_consistency_fraction, 0.0, 1.0);
+  if (p.min_height_m >= p.max_height_m)
+    throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
+  if (p.ground_min_depth_m >= p.ground_max_depth_m)
+    throw ConfigError("config key '" + s.path() +
+                      ".ground_min_depth_m' must be below ground_max_depth_m");
+  return p;
+}
+
+SnvExtrinsicEstimator::SnvExtrinsicEstimator(const Params& params)
+    : params_(params), filter_(filterParams(params)) {
+  if (params_.interval_px < 1) throw std::invalid_argument("snv: interval_px must be >= 1");
+}
+
+SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoCamera& cam,
+                                         const std::vector<Hypothesis>& rois,
+                                         const GroundModel& ground) {
+  if (disparity.type() != CV_32F)
+    throw std::invalid_argument("snv: disparity must be CV_32F");
+  if (const std::string why = cam.problem(); !why.empty())
+    throw std::invalid_argument("snv: camera: " + why);
+  if (disparity.cols != cam.width || disparity.rows != cam.height)
+    throw std::invalid_argument("snv: disparity size does not match the camera");
+
+  SnvResult res;
+  res.interval_px = params_.interval_px;
+  const int interval = params_.interval_px;
+  const cv::Rect image(0, 0, disparity.cols, disparity.rows);
+  const GroundSampleParams gp = groundParams(params_);
+
+  // One integral field over the rows that the ROIs and the ground need.
+  std::vector<cv::Rect> rects;
+  rects.reserve(rois.size() + 1);
+  for (const Hypothesis& h : rois) rects.push_back(cv::Rect(h.box.x, h.box.y, h.box.w, h.box.h) & image);
+  const cv::Range ground_rows = groundRows(cam, ground, gp);
+  std::vector<cv::Rect> needed = rects;
+  if (!ground_rows.empty())
+    needed.push_back(cv::Rect(0, ground_rows.start, disparity.cols, ground_rows.size()));
+  const cv::Range band = rowBandFor(needed, disparity.rows, params_.max_radius_px);
+  IntegralNormalField field;
+  if (!band.empty()) field.prepare(disparity, cam, normalParams(params_), band.start, band.end);
+
+  // Super-SNV pose from the ground normals.
+  filter_.predict();
+  PoseEstimate& pose = res.pose;
+  const std::vector<GroundSample> samples =
+      selectGroundSamples(field, disparity, cam, ground, gp, ground_rows, interval);
+  res.ground_samples = static_cast<int>(samples.size());
+  pose.num_normals = res.ground_samples;
+  pose.valid = false;
+  pose.status = "no_ground";
+  cv::Vec3f instant_normal(0, -1, 0);
+  if (res.ground_samples >= params_.min_ground_normals) {
+    std::vector<float> pitch, roll;
+    pitch.reserve(samples.size());
+    roll.reserve(samples.size());
+    for (const GroundSample& s : samples) {
+      pitch.push_back(normalPitchDeg(s.n));
+      roll.push_back(normalRollDeg(s.n));
+    }
+    const AngleEstimate ep = estimateAngle(pitch, params_);  // sorts pitch
+    const AngleEstimate er = estimateAngle(roll, params_);
+    pose.pitch_mode_deg = ep.mode;
+    pose.pitch_mean_deg = ep.mean;
+    pose.pitch_mean_shift_deg = ep.shift.estimate;
+    pose.inliers = ep.shift.inliers;
+    pose.entropy = windowEntropyBits(pitch, ep.shift.estimate, params_.mean_shift_fraction,
+                                     params_.histogram_bin_deg);
+    pose.confidence = entropyConfidence(pose.entropy, params_.entropy_full_scale_bits);
+    pose.instant_pitch_deg = ep.shift.estimate;
+    pose.instant_roll_deg = er.shift.estimate;
+    instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
+    std::vector<cv::Vec3f> points;
+    points.reserve(samples.size());
+    for (const GroundSample& s : samples) points.push_back(s.p);
+    pose.instant_height_m = medianCameraHeight(points, instant_normal);
+
+    if (pose.confidence < params_.min_confidence) {
+      pose.status = "low_confidence";
+    } else if (!(pose.instant_height_m >= params_.min_height_m &&
+                 pose.instant_height_m <= params_.max_height_m)) {
+      pose.status = "implausible_height";
+    } else {
+      pose.valid = true;
+      pose.status = "ok";
+      filter_.update(pose.instant_pitch_deg, pose.instant_roll_deg, pose.instant_height_m);
+    }
+  }
+  if (filter_.initialised()) {
+    pose.pitch_deg = filter_.pitch().value();
+    pose.roll_deg = filter_.roll().value();
+    pose.height_m = filter_.height().value();
+    pose.filter_pitch_var = filter_.pitch().variance();
+  }
+
+  // The ground normal the ROI classes are measured against: this frame's when
+  // valid, else the filtered one, else the stixel model's, else straight up.
+  cv::Vec3f g(0, -1, 0);
+  if (pose.valid)
+    g = instant_normal;
+  else if (filter_.initialised())
+    g = normalFromPitchRoll(pose.pitch_deg, pose.roll_deg);
+  else if (ground.valid)
+    g = normalFromPitchRoll(ground.pitch_deg, ground.roll_deg);
+  for (int k = 0; k < 3; ++k) res.ground_normal[k] = g[k];
+
+  // Local SNV statistics per ROI.
+  const RoiStatsParams rp = roiParams(params_);
+  res.rois.reserve(rois.size());
+  std::vector<LocalNormal> normals;
+  for (size_t i = 0; i < rois.size(); ++i) {
+    normals.clear();
+    const int n_samples = localNormalsInRect(field, rects[i], interval, normals);
+    res.rois.push_back(computeRoiStats(rois[i].id, n_samples, normals, g, cam, rp));
+  }
+  return res;
+}
+
+}  // namespace nerv::snv

@@ -1,0 +1,194 @@
+// Integral-image normals against slow references (naive cross products and
+// brute-force box means), local vs full-frame, invalid input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "integral_normals.hpp"
+#include "local_normals.hpp"
+#include "naive_normals.hpp"
+#include "point_cloud.hpp"
+#include "snv_test_scenes.hpp"
+
+namespace nerv::snv {
+namespace {
+
+// atan2 of |a x b| and a . b in double: acos of a float dot product cannot
+// resolve angles below ~0.03 deg.
+double angleDeg(const cv::Vec3f& a, const cv::Vec3f& b) {
+  const cv::Vec3d ad(a), bd(b);
+  return std::atan2(cv::norm(ad.cross(bd)), ad.dot(bd)) * 180.0 / CV_PI;
+}
+
+bool finiteVec(const cv::Vec3f& n) { return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]); }
+
+// A gently curved wall 8..12 m ahead: Z(u,v) = 10 + 1.5 sin(u/150) + 0.8 cos(v/90).
+cv::Mat smoothSurface(const StereoCamera& c) {
+  cv::Mat d(c.height, c.width, CV_32F);
+  for (int v = 0; v < c.height; ++v)
+    for (int u = 0; u < c.width; ++u) {
+      const double z = 10.0 + 1.5 * std::sin(u / 150.0) + 0.8 * std::cos(v / 90.0);
+      d.at<float>(v, u) = static_cast<float>(c.fx * c.baseline_m / z);
+    }
+  return d;
+}
+
+TEST(SnvPointCloud, MatchesStereoCameraAndMarksInvalid) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d(c.height, c.width, CV_32F, cv::Scalar(20.0f));
+  d.at<float>(100, 200) = 0.0f;
+  d.at<float>(101, 200) = -3.0f;
+  const PointCloud pc = computePointCloud(d, c);
+  const Point3 p = c.toPoint(300, 250, 20.0);
+  EXPECT_NEAR(pc.x.at<float>(250, 300), p.x, 1e-4);
+  EXPECT_NEAR(pc.y.at<float>(250, 300), p.y, 1e-4);
+  EXPECT_NEAR(pc.z.at<float>(250, 300), p.z, 1e-4);
+  EXPECT_TRUE(std::isnan(pc.z.at<float>(100, 200)));
+  EXPECT_TRUE(std::isnan(pc.x.at<float>(101, 200)));
+}
+
+TEST(SnvIntegralNormals, MatchNaiveCrossProductOnSmoothSurface) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat d = smoothSurface(c);
+  IntegralNormalParams p;
+  const NormalMap fast = computeNormalMap(d, c, p, 1);
+  const NormalMap naive = computeNaiveNormalMap(d, c, 3, 1);
+  double worst = 0;
+  int compared = 0;
+  for (int v = 20; v < c.height - 20; v += 3)
+    for (int u = 20; u < c.width - 20; u += 3) {
+      const cv::Vec3f a = fast.normals.at<cv::Vec3f>(v, u), b = naive.normals.at<cv::Vec3f>(v, u);
+      ASSERT_TRUE(finiteVec(a)) << "no integral normal at " << u << "," << v;
+      ASSERT_TRUE(finiteVec(b));
+      worst = std::max(worst, angleDeg(a, b));
+      ++compared;
+    }
+  std::printf("compared %d normals, worst angle %.4f deg\n", compared, worst);
+  EXPECT_GT(compared, 40000);
+  EXPECT_LT(worst, 1.0);
+}
+
+TEST(SnvIntegralNormals, EqualBruteForceBoxMeans) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = smoothSurface(c);
+  cv::Mat noise(d.size(), CV_32F);
+  cv::randn(noise, 0.0, 0.3);
+  d += noise;
+  for (bool smooth_disparity : {true, false}) {
+    IntegralNormalParams p;
+    p.smooth_disparity = smooth_disparity;
+    IntegralNormalField field;
+    field.prepare(d, c, p);
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> ur(20, c.width - 21), vr(20, c.height - 21), rr(1, 4);
+    double worst = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const int u = ur(rng), v = vr(rng), r = rr(rng);
+      cv::Vec3f a, b;
+      ASSERT_TRUE(field.normalAt(u, v, r, a));
+      ASSERT_TRUE(bruteForceSmoothedNormal(d, c, p, u, v, r, b));
+      worst = std::max(worst, angleDeg(a, b));
+    }
+    EXPECT_LT(worst, 0.01) << "smooth_disparity=" << smooth_disparity;
+  }
+}
+
+TEST(SnvIntegralNormals, ExactOnPlanesAndFacingTheCamera) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat d = test::roadDisparity(c, 1.5, -0.7, 1.65);
+  const cv::Vec3d truth = test::roadNormal(1.5, -0.7);
+  const NormalMap map = computeNormalMap(d, c, IntegralNormalParams{}, 2);
+  int n = 0;
+  double worst = 0;
+  for (int j = 0; j < map.normals.rows; ++j)
+    for (int i = 0; i < map.normals.cols; ++i) {
+      const cv::Vec3f a = map.normals.at<cv::Vec3f>(j, i);
+      if (!finiteVec(a)) continue;
+      worst = std::max(worst, angleDeg(a, cv::Vec3f(truth)));
+      ++n;
+    }
+  EXPECT_GT(n, 40000);
+  EXPECT_LT(worst, 0.02);
+}
+
+TEST(SnvIntegralNormals, WindowsStayOffDiscontinuities) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 0.0, 0.0, 1.65);
+  // A wall facing the camera 15 m ahead over the middle of the image.
+  test::paintUprightFace(d, c, cv::Rect(500, 60, 200, 150), 15.0, 0.0);
+  const NormalMap map = computeNormalMap(d, c, IntegralNormalParams{}, 1);
+  // Right next to the wall's bottom edge both sides keep their own normal.
+  const cv::Vec3f wall = map.normals.at<cv::Vec3f>(205, 600);
+  const cv::Vec3f road = map.normals.at<cv::Vec3f>(216, 600);
+  ASSERT_TRUE(finiteVec(wall));
+  ASSERT_TRUE(finiteVec(road));
+  EXPECT_LT(angleDeg(wall, cv::Vec3f(0, 0, -1)), 0.05);
+  EXPECT_LT(angleDeg(road, cv::Vec3f(0, -1, 0)), 0.05);
+  // On the edge itself there is no normal.
+  EXPECT_FALSE(finiteVec(map.normals.at<cv::Vec3f>(209, 600)));
+}
+
+TEST(SnvIntegralNormals, AnyIntervalIsTheSubsampledFullMap) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 0.8, 0.3, 1.6);
+  test::paintUprightFace(d, c, cv::Rect(300, 80, 120, 120), 12.0, 35.0);
+  const NormalMap full = computeNormalMap(d, c, IntegralNormalParams{}, 1);
+  for (int k = 2; k <= 6; ++k) {
+    const NormalMap sub = computeNormalMap(d, c, IntegralNormalParams{}, k);
+    ASSERT_EQ(sub.normals.rows, (c.height + k - 1) / k);
+    ASSERT_EQ(sub.normals.cols, (c.width + k - 1) / k);
+    int mismatches = 0;
+    for (int j = 0; j < sub.normals.rows; ++j)
+      for (int i = 0; i < sub.normals.cols; ++i) {
+        const cv::Vec3f a = sub.normals.at<cv::Vec3f>(j, i), b = full.normals.at<cv::Vec3f>(j * k, i * k);
+        if (finiteVec(a) != finiteVec(b) || (finiteVec(a) && angleDeg(a, b) > 1e-3)) ++mismatches;
+      }
+    EXPECT_EQ(mismatches, 0) << "interval " << k;
+  }
+}
+
+TEST(SnvLocalNormals, EqualTheFullMapInsideABand) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 0.5, 0.0, 1.65);
+  test::paintUprightFace(d, c, cv::Rect(700, 90, 90, 110), 14.0, -20.0);
+  cv::Mat noise(d.size(), CV_32F);
+  cv::randn(noise, 0.0, 0.1);
+  cv::Mat noisy = d + noise;
+  noisy.setTo(0.0f, d <= 0.0f);
+  const int interval = 4;
+  const NormalMap full = computeNormalMap(noisy, c, IntegralNormalParams{}, interval);
+  const cv::Rect roi(690, 80, 120, 140);
+  const cv::Range band = rowBandFor({roi}, c.height, IntegralNormalParams{}.max_radius_px);
+  IntegralNormalField field;
+  field.prepare(noisy, c, IntegralNormalParams{}, band.start, band.end);
+  std::vector<LocalNormal> local;
+  const int samples = localNormalsInRect(field, roi, interval, local);
+  EXPECT_EQ(samples, (120 / 4) * (140 / 4));
+  ASSERT_GT(local.size(), 500u);
+  int full_count = 0;
+  for (int v = 80; v < 220; v += interval)
+    for (int u = 692; u < 810; u += interval)
+      if (finiteVec(full.normals.at<cv::Vec3f>(v / interval, u / interval))) ++full_count;
+  EXPECT_EQ(static_cast<int>(local.size()), full_count);
+  for (const LocalNormal& ln : local) {
+    const cv::Vec3f b = full.normals.at<cv::Vec3f>(ln.v / interval, ln.u / interval);
+    ASSERT_TRUE(finiteVec(b));
+    ASSERT_LT(angleDeg(ln.n, b), 1e-3) << ln.u << "," << ln.v;
+  }
+}
+
+TEST(SnvIntegralNormals, AllInvalidDisparityGivesNoNormals) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat d(c.height, c.width, CV_32F, cv::Scalar(0.0f));
+  const NormalMap map = computeNormalMap(d, c, IntegralNormalParams{}, 1);
+  EXPECT_EQ(cv::countNonZero(map.normals.reshape(1) == map.normals.reshape(1)), 0);  // all NaN
+  IntegralNormalField field;
+  field.prepare(d, c, IntegralNormalParams{});
+  std::vector<LocalNormal> local;
+  EXPECT_EQ(localNormalsInRect(field, cv::Rect(10, 10, 50, 50), 4, local), 12 * 12);
+  EXPECT_TRUE(local.empty());
+}
+
+}  // namespace
+}  // namespace nerv::snv
