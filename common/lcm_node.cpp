@@ -137,7 +137,7 @@ void Node::publishHealth() {
 
 void Node::poll(int timeout_ms) {
   if (last_health_utime_ == 0) publishHealth();
-  if (lcm_.handleTimeout(timeout_ms) < 0) {
+  if (lcm_.handleTimeout(timeout_ms) < 0 && !g_stop) {  // a signal interrupting select is no error
     error("lcm_failed", "handleTimeout failed");
     usleep(10000);  // a broken socket must not spin the CPU
   }

@@ -74,6 +74,8 @@ class Node {
   // poll() until SIGINT/SIGTERM; returns the exit code (0).
   int spin();
   static bool stopRequested();
+  // Publishes a health report now (spin() does so on exit by itself).
+  void reportHealth() { publishHealth(); }
 
  private:
   struct Subscription {

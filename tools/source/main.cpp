@@ -166,6 +166,7 @@ int play(const Options& o) {
       std::fprintf(stderr, "\rsource: sent %zu/%zu, detected %zu ", count, count, detected.size());
     }
   }
+  node.reportHealth();
   const double seconds = std::chrono::duration<double>(clock::now() - start).count();
   std::fprintf(stderr, "\rsource: sent %zu frames in %.2f s, %zu with DETECTIONS\n", count,
                seconds, detected.size());

@@ -11,6 +11,7 @@
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
 // every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -78,6 +79,7 @@ pid_t spawn(const Child& c) {
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the supervisor, even after kill -9
     std::vector<char*> args;
     for (const auto& a : c.argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
