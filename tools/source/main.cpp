@@ -74,7 +74,7 @@ Options parse(int argc, char** argv) {
         if (!s.empty()) o.wait_for.insert(s);
     } else throw std::runtime_error("unknown flag '" + a + "'");
   }
-  if (o.data.empty()) throw std::runtime_error("--data DIR is required");
+  if (o.data.empty() && o.max_frames != 0) throw std::runtime_error("--data DIR is required");
   if (o.rate_hz < 0) throw std::runtime_error("--rate must be >= 0");
   if (o.in_flight < 1) throw std::runtime_error("--in-flight must be >= 1");
   if (o.encoding != "gray8" && o.encoding != "bgr8" && o.encoding != "png" && o.encoding != "jpeg")
@@ -97,7 +97,8 @@ stereo_frame_t makeFrame(const Dataset& ds, const DatasetFrame& f, const std::st
 }
 
 int play(const Options& o) {
-  const Dataset ds = openDataset(o.data);
+  // --frames 0 without data: only wait for the services' health (used by replay).
+  const Dataset ds = o.data.empty() ? Dataset{} : openDataset(o.data);
   if (o.check_only) return 0;  // --check: the dataset opens, nothing else to do
   const size_t count = o.max_frames >= 0 ? std::min<size_t>(o.max_frames, ds.frames.size())
                                          : ds.frames.size();

@@ -1,7 +1,7 @@
 // nerv_up: starts the services a pipeline config describes, keeps them running
 // and shows their health.
 //
-//   nerv_up --config FILE [--lcm-url URL] [--prefix P] [--quiet] [--exit-when-idle S]
+//   nerv_up --config FILE [--lcm-url URL] [--prefix P] [--services a,b] [--quiet] [--exit-when-idle S]
 //   nerv_up --status [--lcm-url URL] [--prefix P] [--listen S]
 //
 // The `run:` section of the config says which services to start and how many
@@ -50,7 +50,7 @@ struct Child {
 };
 
 struct Options {
-  std::string config, lcm_url, prefix, bin_dir;
+  std::string config, lcm_url, prefix, bin_dir, services;
   bool status_only = false, quiet = false;
   double listen_s = 2.0, exit_when_idle_s = 0;
 };
@@ -113,6 +113,7 @@ int up(const Options& o) {
   ConfigSection run = root.section("run");
   std::string services_csv = "stereo_matcher,stixel,snv_extrinsic,validator";
   run.get("services", services_csv);
+  if (!o.services.empty()) services_csv = o.services;
   double backoff0 = 0.5, backoff_max = 10;
   run.get("restart_backoff_s", backoff0, 0.05, 60);
   run.get("restart_backoff_max_s", backoff_max, 0.05, 600);
@@ -231,6 +232,7 @@ int main(int argc, char** argv) {
       if (a == "--config") o.config = value();
       else if (a == "--lcm-url") o.lcm_url = value();
       else if (a == "--prefix") o.prefix = value();
+      else if (a == "--services") o.services = value();
       else if (a == "--status") o.status_only = true;
       else if (a == "--listen") o.listen_s = std::stod(value());
       else if (a == "--quiet") o.quiet = true;
