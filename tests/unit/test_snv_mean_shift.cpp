@@ -44,7 +44,7 @@ float bruteForceMeanShift(const std::vector<float>& values, float start, float f
   return static_cast<float>(c);
 }
 
-TEST(SnvSuperSnv, HistogramModeAndBins) {
+TEST(snvSuperSnv, HistogramModeAndBins) {
   const std::vector<float> v = {0.01f, 0.02f, 0.13f, 0.14f, 0.15f, -0.33f, 0.19f};
   const AngleHistogram h = buildAngleHistogram(v, 0.1f);
   EXPECT_NEAR(h.origin_deg, -0.4f, 1e-6);
@@ -54,7 +54,7 @@ TEST(SnvSuperSnv, HistogramModeAndBins) {
   EXPECT_TRUE(std::isnan(buildAngleHistogram({}, 0.1f).modeDeg()));
 }
 
-TEST(SnvSuperSnv, AngleConventions) {
+TEST(snvSuperSnv, AngleConventions) {
   // Camera looking down by 2 deg: the road normal tips towards -z.
   const cv::Vec3f n = normalFromPitchRoll(2.0f, -1.0f);
   EXPECT_LT(n[2], 0.0f);
@@ -66,7 +66,7 @@ TEST(SnvSuperSnv, AngleConventions) {
   EXPECT_NEAR(normalPitchDeg(n), ref, 1e-4);
 }
 
-TEST(SnvMeanShift, MatchesBruteForceOnSkewedSample) {
+TEST(snvMeanShift, MatchesBruteForceOnSkewedSample) {
   for (unsigned seed : {1u, 2u, 3u}) {
     std::vector<float> v = skewedSample(4000, 0.4f, seed);
     const float mode = buildAngleHistogram(v, 0.1f).modeDeg();
@@ -88,7 +88,7 @@ TEST(SnvMeanShift, MatchesBruteForceOnSkewedSample) {
   }
 }
 
-TEST(SnvMeanShift, NearestRunIsTheKNearest) {
+TEST(snvMeanShift, NearestRunIsTheKNearest) {
   std::vector<float> v = skewedSample(500, 0.0f, 9);
   std::sort(v.begin(), v.end());
   for (float c : {-1.0f, 0.0f, 0.3f, 2.5f, 9.0f}) {
@@ -103,14 +103,14 @@ TEST(SnvMeanShift, NearestRunIsTheKNearest) {
   }
 }
 
-TEST(SnvMeanShift, SingleValueAndEmpty) {
+TEST(snvMeanShift, SingleValueAndEmpty) {
   const MeanShiftResult ms = adaptiveMeanShift({1.25f}, 1.2f, 0.5f, 0.01f);
   EXPECT_FLOAT_EQ(ms.estimate, 1.25f);
   EXPECT_EQ(ms.inliers, 1);
   EXPECT_THROW(adaptiveMeanShift({}, 0.0f, 0.5f, 0.01f), std::invalid_argument);
 }
 
-TEST(SnvEntropy, DefinitionOnExactHistograms) {
+TEST(snvEntropy, DefinitionOnExactHistograms) {
   // 8 values in 8 different 0.1 deg bins around 0: window of all = 3 bits.
   std::vector<float> v;
   for (int i = -4; i < 4; ++i) v.push_back(0.1f * i);
@@ -123,7 +123,7 @@ TEST(SnvEntropy, DefinitionOnExactHistograms) {
   EXPECT_FLOAT_EQ(entropyConfidence(9.0f, 6.0f), 0.0f);
 }
 
-TEST(SnvEntropy, MeanAtLeastModeAboveMeanShift) {
+TEST(snvEntropy, MeanAtLeastModeAboveMeanShift) {
   for (unsigned seed : {4u, 5u, 6u}) {
     // The skewed sample plus a spike of 13 % off the core, as SGBM's sub-pixel
     // locking produces: the histogram mode sits on the spike, not the core.

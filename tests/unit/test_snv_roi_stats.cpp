@@ -24,7 +24,7 @@ void print(const char* what, const NormalStats& s) {
               s.tilt_from_ground_deg);
 }
 
-class SnvRoiScene : public ::testing::Test {
+class snvRoiScene : public ::testing::Test {
  protected:
   void SetUp() override {
     cam = test::kittiCamera();
@@ -43,7 +43,7 @@ class SnvRoiScene : public ::testing::Test {
   cv::Mat disparity;
 };
 
-TEST_F(SnvRoiScene, BoxRoadAndNoisePatchGetTheirClasses) {
+TEST_F(snvRoiScene, BoxRoadAndNoisePatchGetTheirClasses) {
   SnvExtrinsicEstimator est{Params{}};
   const std::vector<Hypothesis> rois = {roi(7, 555, 182, 148, 90), roi(3, 800, 260, 200, 80),
                                         roi(11, 260, 160, 130, 80)};
@@ -77,7 +77,7 @@ TEST_F(SnvRoiScene, BoxRoadAndNoisePatchGetTheirClasses) {
   EXPECT_NEAR(noise.pitch_deg, 90.0f, 10.0f);  // representative normal faces the camera
 }
 
-TEST_F(SnvRoiScene, TurnedFaceGivesYawAndElevation) {
+TEST_F(snvRoiScene, TurnedFaceGivesYawAndElevation) {
   std::vector<LocalNormal> normals;
   IntegralNormalField field;
   field.prepare(disparity, cam, IntegralNormalParams{});
@@ -89,7 +89,7 @@ TEST_F(SnvRoiScene, TurnedFaceGivesYawAndElevation) {
   EXPECT_NEAR(s.object_fraction, 1.0f, 1e-6);
 }
 
-TEST_F(SnvRoiScene, DegenerateRoisGiveExplicitEmptyStats) {
+TEST_F(snvRoiScene, DegenerateRoisGiveExplicitEmptyStats) {
   SnvExtrinsicEstimator est{Params{}};
   const std::vector<Hypothesis> rois = {roi(1, 2000, 100, 50, 50),  // right of the image
                                         roi(2, -300, -200, 100, 100),  // above-left
@@ -109,7 +109,7 @@ TEST_F(SnvRoiScene, DegenerateRoisGiveExplicitEmptyStats) {
   EXPECT_EQ(r.rois[4].num_samples, 11 * 6);
 }
 
-TEST(SnvRoiStats, AllInvalidDisparity) {
+TEST(snvRoiStats, AllInvalidDisparity) {
   const StereoCamera cam = test::kittiCamera();
   SnvExtrinsicEstimator est{Params{}};
   const cv::Mat d(cam.height, cam.width, CV_32F, cv::Scalar(0.0f));
