@@ -192,3 +192,33 @@ TEST(snvIntegralNormals, AllInvalidDisparityGivesNoNormals) {
 
 }  // namespace
 }  // namespace nerv::snv
+
+namespace nerv::snv {
+namespace {
+
+// The adaptive radius read from the edge integral equals the brief's
+// definition r = min((B-1)/2, T/2) with B = cv::distanceTransform(DIST_C) of the edge map.
+TEST(snvIntegralNormals, AdaptiveRadiusEqualsDistanceTransformDefinition) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 0.4, 0.2, 1.65);
+  test::paintUprightFace(d, c, cv::Rect(500, 60, 200, 150), 15.0, 20.0);
+  test::paintUprightFace(d, c, cv::Rect(100, 120, 60, 120), 8.0, -40.0);
+  d(cv::Rect(900, 250, 30, 30)).setTo(0.0f);  // a hole
+  IntegralNormalField field;
+  field.prepare(d, c, IntegralNormalParams{});
+  const cv::Mat b = field.edgeDistance();
+  int differ = 0, with_normal = 0;
+  for (int v = 0; v < c.height; ++v)
+    for (int u = 0; u < c.width; ++u) {
+      const int rb = (static_cast<int>(b.at<float>(v, u)) - 1) / 2;
+      const int expected = std::max(0, std::min(rb, field.depthRadius(u, v)));
+      const int r = field.adaptiveRadius(u, v);
+      differ += r != expected;
+      with_normal += r >= 1;
+    }
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(with_normal, 100000);
+}
+
+}  // namespace
+}  // namespace nerv::snv
