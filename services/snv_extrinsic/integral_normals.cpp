@@ -53,14 +53,16 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
 
 double IntegralNormalField::boxSum(const cv::Mat& integral, int u, int v, int r) const {
   const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r, x1 = u + r + 1;
-  if (integral.depth() == CV_64F) {
-    const double* a = integral.ptr<double>(y0);
-    const double* b = integral.ptr<double>(y1);
-    return b[x1] - a[x1] - b[x0] + a[x0];
-  }
-  const int* a = integral.ptr<int>(y0);
-  const int* b = integral.ptr<int>(y1);
-  return static_cast<double>(b[x1] - a[x1] - b[x0] + a[x0]);
+  const double* a = integral.ptr<double>(y0);
+  const double* b = integral.ptr<double>(y1);
+  return b[x1] - a[x1] - b[x0] + a[x0];
+}
+
+int IntegralNormalField::edgeCount(int u, int v, int r) const {
+  const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r, x1 = u + r + 1;
+  const int* a = edge_integral_.ptr<int>(y0);
+  const int* b = edge_integral_.ptr<int>(y1);
+  return b[x1] - a[x1] - b[x0] + a[x0];
 }
 
 float IntegralNormalField::smoothedDepth(int u, int v, int r) const {
@@ -84,7 +86,7 @@ int IntegralNormalField::depthRadius(int u, int v) const {
 
 int IntegralNormalField::adaptiveRadius(int u, int v) const {
   int r = depthRadius(u, v);
-  while (r >= 1 && boxSum(edge_integral_, u, v, 2 * r) > 0) --r;
+  while (r >= 1 && edgeCount(u, v, 2 * r) > 0) --r;
   return r;
 }
 
@@ -127,17 +129,16 @@ NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
 
   IntegralNormalField field;
   field.prepare(disparity, cam, params);
-  const cv::Mat dist = field.edgeDistance();
+  // r = min(B, T) read from the edge integral (adaptiveRadius) rather than a
+  // cv::distanceTransform: the same radius (see edgeDistance() and its test),
+  // but O(1) per pixel without a full-frame transform.
   cv::parallel_for_(cv::Range(0, gh), [&](const cv::Range& range) {
     for (int j = range.start; j < range.end; ++j) {
       const int v = j * interval_px;
-      const float* b = dist.ptr<float>(v);
       cv::Vec3f* out = map.normals.ptr<cv::Vec3f>(j);
       for (int i = 0; i < gw; ++i) {
         const int u = i * interval_px;
-        // Chessboard distance B: a window of radius 2r holds no edge iff 2r <= B-1.
-        const int rb = (static_cast<int>(b[u]) - 1) / 2;
-        const int r = std::min(rb, field.depthRadius(u, v));
+        const int r = field.adaptiveRadius(u, v);
         cv::Vec3f n;
         if (r >= 1 && field.normalAt(u, v, r, n))
           out[i] = n;

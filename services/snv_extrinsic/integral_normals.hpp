@@ -55,8 +55,9 @@ class IntegralNormalField {
 
   // Largest radius allowed by depth (T) and borders alone; 0 where the pixel is invalid.
   int depthRadius(int u, int v) const;
-  // Adaptive radius min(B, T) found from the edge integral image (shrinks until no
-  // discontinuity lies in the 4r+1 window); 0 = no normal.
+  // Adaptive radius r = min(floor((B-1)/2), depthRadius) where B is the chessboard
+  // distance transform of the edge map: found from the edge integral image by
+  // shrinking r until the (4r+1)^2 window holds no edge; 0 = no normal.
   int adaptiveRadius(int u, int v) const;
   // Normal with a given radius (r >= 1, windows inside the band); false when a
   // smoothed depth is not positive.
@@ -65,7 +66,8 @@ class IntegralNormalField {
   cv::Mat edgeDistance() const;
 
  private:
-  double boxSum(const cv::Mat& integral, int u, int v, int r) const;
+  double boxSum(const cv::Mat& integral, int u, int v, int r) const;  // CV_64F integral
+  int edgeCount(int u, int v, int r) const;
   float smoothedDepth(int u, int v, int r) const;
 
   cv::Mat disparity_;      // the caller's map (header only)
@@ -78,7 +80,7 @@ class IntegralNormalField {
   float fb_ = 0, inv_fx_ = 0, inv_fy_ = 0;
 };
 
-// Full-frame SNV map at any interval: B from a distance transform of the edge map.
+// Full-frame SNV map at any interval (rows in parallel with cv::parallel_for_).
 NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
                            const IntegralNormalParams& params, int interval_px);
 

@@ -17,7 +17,7 @@ float median(std::vector<float>& v) {
 }  // namespace
 
 NormalStats computeRoiStats(int roi_id, int num_samples, const std::vector<LocalNormal>& normals,
-                            const cv::Vec3f& ground_normal, const StereoCamera& cam,
+                            const cv::Vec3f& ground_normal,
                             const RoiStatsParams& params) {
   NormalStats s;
   s.roi_id = roi_id;
@@ -46,9 +46,7 @@ NormalStats computeRoiStats(int roi_id, int num_samples, const std::vector<Local
       continue;
     }
     const bool is_upright = std::abs(along_g) <= sin_upright;  // |90 deg - tilt| <= tolerance
-    const cv::Vec3f ray = cv::normalize(cv::Vec3f(static_cast<float>((ln.u - cam.cx) / cam.fx),
-                                                  static_cast<float>((ln.v - cam.cy) / cam.fy), 1.0f));
-    if (-n.dot(ray) >= cos_facing) {
+    if (-n[2] >= cos_facing) {
       ++facing;
       if (is_upright) ++facing_upright;
     } else if (is_upright) {

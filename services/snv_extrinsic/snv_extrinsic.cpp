@@ -220,7 +220,7 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
   for (size_t i = 0; i < rois.size(); ++i) {
     normals.clear();
     const int n_samples = localNormalsInRect(field, rects[i], interval, normals);
-    res.rois.push_back(computeRoiStats(rois[i].id, n_samples, normals, g, cam, rp));
+    res.rois.push_back(computeRoiStats(rois[i].id, n_samples, normals, g, rp));
   }
   return res;
 }

@@ -51,7 +51,7 @@ struct Params {
 
   // ROI classes (roi_normal_stats.hpp).
   float upright_tolerance_deg = 30.0f;          // 90 +- this from the ground normal = upright
-  float facing_cone_deg = 10.0f;                // within this of the reversed viewing ray = facing
+  float facing_cone_deg = 10.0f;                // within this of the camera -z axis = facing
   float upright_consistency_fraction = 0.15f;   // upright share that makes facing normals object-like
 };
 

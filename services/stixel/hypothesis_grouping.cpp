@@ -7,21 +7,15 @@ namespace nerv::stixel {
 
 namespace {
 
-// Depth and lateral gap are measured between a stixel and the nearest-in-depth of
-// the group's last two members, so one stray stixel inside an object (a window,
-// a reflection) does not cut it in two.
+// Depth and lateral gap between a stixel and the group's last member.
 bool joins(const std::vector<const Stixel*>& group, const Stixel& s, const StereoCamera& cam,
            const GroupingParams& p) {
-  const size_t n = group.size();
-  for (size_t i = n; i-- > 0 && i + 2 >= n;) {
-    const Stixel& g = *group[i];
-    const float dz = std::abs(g.depth_m - s.depth_m);
-    const float z = std::min(g.depth_m, s.depth_m);
-    const float gap_px = static_cast<float>(s.u - (g.u + g.width));
-    const float lateral_m = std::max(0.0f, gap_px) * z / static_cast<float>(cam.fx);
-    if (dz <= p.group_depth_gap_m && lateral_m <= p.group_lateral_gap_m) return true;
-  }
-  return false;
+  const Stixel& g = *group.back();
+  const float dz = std::abs(g.depth_m - s.depth_m);
+  const float z = std::min(g.depth_m, s.depth_m);
+  const float gap_px = static_cast<float>(s.u - (g.u + g.width));
+  const float lateral_m = std::max(0.0f, gap_px) * z / static_cast<float>(cam.fx);
+  return dz <= p.group_depth_gap_m && lateral_m <= p.group_lateral_gap_m;
 }
 
 }  // namespace
@@ -30,10 +24,17 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
                                      const GroupingParams& p) {
   std::vector<std::vector<const Stixel*>> groups;
   for (const Stixel& s : stixels) {
-    if (!groups.empty() && joins(groups.back(), s, cam, p))
-      groups.back().push_back(&s);
-    else
+    const size_t n = groups.size();
+    if (n > 0 && joins(groups[n - 1], s, cam, p)) {
+      groups[n - 1].push_back(&s);
+    } else if (n > 1 && groups[n - 1].size() == 1 && joins(groups[n - 2], s, cam, p)) {
+      // One stray stixel (a window, a reflection, a thin post in front) does not
+      // cut an object in two: the object continues behind it.
+      groups[n - 2].push_back(&s);
+      std::swap(groups[n - 2], groups[n - 1]);
+    } else {
       groups.push_back({&s});
+    }
   }
 
   std::vector<Hypothesis> out;
@@ -72,9 +73,11 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     hy.disparity = d;
     hy.num_stixels = static_cast<int>(g.size());
     if (hy.height_m < p.min_obstacle_height_m || hy.distance_m > p.max_distance_m) continue;
-    hy.id = static_cast<int>(out.size());
     out.push_back(hy);
   }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.box.x < b.box.x; });
+  for (size_t i = 0; i < out.size(); ++i) out[i].id = static_cast<int>(i);
   return out;
 }
 

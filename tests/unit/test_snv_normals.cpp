@@ -34,7 +34,7 @@ cv::Mat smoothSurface(const StereoCamera& c) {
   return d;
 }
 
-TEST(SnvPointCloud, MatchesStereoCameraAndMarksInvalid) {
+TEST(snvPointCloud, MatchesStereoCameraAndMarksInvalid) {
   const StereoCamera c = test::kittiCamera();
   cv::Mat d(c.height, c.width, CV_32F, cv::Scalar(20.0f));
   d.at<float>(100, 200) = 0.0f;
@@ -48,7 +48,7 @@ TEST(SnvPointCloud, MatchesStereoCameraAndMarksInvalid) {
   EXPECT_TRUE(std::isnan(pc.x.at<float>(101, 200)));
 }
 
-TEST(SnvIntegralNormals, MatchNaiveCrossProductOnSmoothSurface) {
+TEST(snvIntegralNormals, MatchNaiveCrossProductOnSmoothSurface) {
   const StereoCamera c = test::kittiCamera();
   const cv::Mat d = smoothSurface(c);
   IntegralNormalParams p;
@@ -69,7 +69,7 @@ TEST(SnvIntegralNormals, MatchNaiveCrossProductOnSmoothSurface) {
   EXPECT_LT(worst, 1.0);
 }
 
-TEST(SnvIntegralNormals, EqualBruteForceBoxMeans) {
+TEST(snvIntegralNormals, EqualBruteForceBoxMeans) {
   const StereoCamera c = test::kittiCamera();
   cv::Mat d = smoothSurface(c);
   cv::Mat noise(d.size(), CV_32F);
@@ -94,7 +94,7 @@ TEST(SnvIntegralNormals, EqualBruteForceBoxMeans) {
   }
 }
 
-TEST(SnvIntegralNormals, ExactOnPlanesAndFacingTheCamera) {
+TEST(snvIntegralNormals, ExactOnPlanesAndFacingTheCamera) {
   const StereoCamera c = test::kittiCamera();
   const cv::Mat d = test::roadDisparity(c, 1.5, -0.7, 1.65);
   const cv::Vec3d truth = test::roadNormal(1.5, -0.7);
@@ -112,7 +112,7 @@ TEST(SnvIntegralNormals, ExactOnPlanesAndFacingTheCamera) {
   EXPECT_LT(worst, 0.02);
 }
 
-TEST(SnvIntegralNormals, WindowsStayOffDiscontinuities) {
+TEST(snvIntegralNormals, WindowsStayOffDiscontinuities) {
   const StereoCamera c = test::kittiCamera();
   cv::Mat d = test::roadDisparity(c, 0.0, 0.0, 1.65);
   // A wall facing the camera 15 m ahead over the middle of the image.
@@ -129,7 +129,7 @@ TEST(SnvIntegralNormals, WindowsStayOffDiscontinuities) {
   EXPECT_FALSE(finiteVec(map.normals.at<cv::Vec3f>(209, 600)));
 }
 
-TEST(SnvIntegralNormals, AnyIntervalIsTheSubsampledFullMap) {
+TEST(snvIntegralNormals, AnyIntervalIsTheSubsampledFullMap) {
   const StereoCamera c = test::kittiCamera();
   cv::Mat d = test::roadDisparity(c, 0.8, 0.3, 1.6);
   test::paintUprightFace(d, c, cv::Rect(300, 80, 120, 120), 12.0, 35.0);
@@ -148,7 +148,7 @@ TEST(SnvIntegralNormals, AnyIntervalIsTheSubsampledFullMap) {
   }
 }
 
-TEST(SnvLocalNormals, EqualTheFullMapInsideABand) {
+TEST(snvLocalNormals, EqualTheFullMapInsideABand) {
   const StereoCamera c = test::kittiCamera();
   cv::Mat d = test::roadDisparity(c, 0.5, 0.0, 1.65);
   test::paintUprightFace(d, c, cv::Rect(700, 90, 90, 110), 14.0, -20.0);
@@ -178,7 +178,7 @@ TEST(SnvLocalNormals, EqualTheFullMapInsideABand) {
   }
 }
 
-TEST(SnvIntegralNormals, AllInvalidDisparityGivesNoNormals) {
+TEST(snvIntegralNormals, AllInvalidDisparityGivesNoNormals) {
   const StereoCamera c = test::kittiCamera();
   const cv::Mat d(c.height, c.width, CV_32F, cv::Scalar(0.0f));
   const NormalMap map = computeNormalMap(d, c, IntegralNormalParams{}, 1);
@@ -188,6 +188,36 @@ TEST(SnvIntegralNormals, AllInvalidDisparityGivesNoNormals) {
   std::vector<LocalNormal> local;
   EXPECT_EQ(localNormalsInRect(field, cv::Rect(10, 10, 50, 50), 4, local), 12 * 12);
   EXPECT_TRUE(local.empty());
+}
+
+}  // namespace
+}  // namespace nerv::snv
+
+namespace nerv::snv {
+namespace {
+
+// The adaptive radius read from the edge integral equals the brief's
+// definition r = min((B-1)/2, T/2) with B = cv::distanceTransform(DIST_C) of the edge map.
+TEST(snvIntegralNormals, AdaptiveRadiusEqualsDistanceTransformDefinition) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 0.4, 0.2, 1.65);
+  test::paintUprightFace(d, c, cv::Rect(500, 60, 200, 150), 15.0, 20.0);
+  test::paintUprightFace(d, c, cv::Rect(100, 120, 60, 120), 8.0, -40.0);
+  d(cv::Rect(900, 250, 30, 30)).setTo(0.0f);  // a hole
+  IntegralNormalField field;
+  field.prepare(d, c, IntegralNormalParams{});
+  const cv::Mat b = field.edgeDistance();
+  int differ = 0, with_normal = 0;
+  for (int v = 0; v < c.height; ++v)
+    for (int u = 0; u < c.width; ++u) {
+      const int rb = (static_cast<int>(b.at<float>(v, u)) - 1) / 2;
+      const int expected = std::max(0, std::min(rb, field.depthRadius(u, v)));
+      const int r = field.adaptiveRadius(u, v);
+      differ += r != expected;
+      with_normal += r >= 1;
+    }
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(with_normal, 100000);
 }
 
 }  // namespace

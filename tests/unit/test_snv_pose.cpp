@@ -16,7 +16,7 @@ struct Case {
   double pitch_deg, roll_deg, height_m;
 };
 
-TEST(SnvPose, RecoversPitchRollHeightOfAnalyticRoad) {
+TEST(snvPose, RecoversPitchRollHeightOfAnalyticRoad) {
   const StereoCamera c = test::kittiCamera();
   for (const Case k : {Case{0.0, 0.0, 1.65}, Case{1.2, 0.0, 1.65}, Case{-2.0, 0.8, 1.40},
                        Case{3.5, -1.5, 2.10}}) {
@@ -46,7 +46,7 @@ TEST(SnvPose, RecoversPitchRollHeightOfAnalyticRoad) {
   }
 }
 
-TEST(SnvPose, NoGroundMeansNoPose) {
+TEST(snvPose, NoGroundMeansNoPose) {
   const StereoCamera c = test::kittiCamera();
   SnvExtrinsicEstimator est{Params{}};
   const cv::Mat empty(c.height, c.width, CV_32F, cv::Scalar(0.0f));
@@ -73,7 +73,7 @@ TEST(SnvPose, NoGroundMeansNoPose) {
   EXPECT_GT(r.pose.filter_pitch_var, var_after_update);  // prediction without update
 }
 
-TEST(SnvPose, RejectsWrongInput) {
+TEST(snvPose, RejectsWrongInput) {
   const StereoCamera c = test::kittiCamera();
   SnvExtrinsicEstimator est{Params{}};
   EXPECT_THROW(est.process(cv::Mat(c.height, c.width, CV_16S, cv::Scalar(0)), c, {}, {}),
@@ -82,7 +82,7 @@ TEST(SnvPose, RejectsWrongInput) {
                std::invalid_argument);
 }
 
-TEST(SnvPoseFilter, ScalarKalmanConvergesAndReportsVariance) {
+TEST(snvPoseFilter, ScalarKalmanConvergesAndReportsVariance) {
   PoseFilterParams p;
   p.pitch_process_var_deg2 = 0.01f;
   p.pitch_measurement_var_deg2 = 0.04f;
@@ -104,7 +104,7 @@ TEST(SnvPoseFilter, ScalarKalmanConvergesAndReportsVariance) {
   EXPECT_NEAR(f.pitch().variance(), ss, 1e-4);
 }
 
-TEST(SnvPoseKitti, HeightAndPitchStabilityOnRealFrames) {
+TEST(snvPoseKitti, HeightAndPitchStabilityOnRealFrames) {
   if (!test::kittiSeqAvailable()) GTEST_SKIP() << "no " << test::kittiSeqDir();
   const StereoCamera c = loadPlainCalibration(test::kittiSeqDir() + "/calib.yaml");
   SnvExtrinsicEstimator est{Params{}};

@@ -105,7 +105,7 @@ void writeOverlay(const Frame& fr, const std::vector<LabelBox>& labels) {
   cv::imwrite(std::string(dir) + "/" + fr.meta.name + ".png", img);
 }
 
-TEST(StixelKitti, CameraHeightWithinTenCentimetresOnEveryFrame) {
+TEST(stixelKitti, CameraHeightWithinTenCentimetresOnEveryFrame) {
   if (frames().empty()) GTEST_SKIP() << "no " << NERV_SHARED_DATA << "/kitti_raw_0926_seq";
   for (const Frame& fr : frames()) {
     const GroundModel& g = fr.result.ground;
@@ -119,7 +119,7 @@ TEST(StixelKitti, CameraHeightWithinTenCentimetresOnEveryFrame) {
   }
 }
 
-TEST(StixelKitti, CarAheadInFrameZero) {
+TEST(stixelKitti, CarAheadInFrameZero) {
   if (frames().empty()) GTEST_SKIP() << "no " << NERV_SHARED_DATA << "/kitti_raw_0926_seq";
   const cv::Rect2f car(605, 176, 681 - 605, 234 - 176);
   float best = 0;
@@ -133,7 +133,7 @@ TEST(StixelKitti, CarAheadInFrameZero) {
   EXPECT_NEAR(match->z_m, 19.66, 1.0);
 }
 
-TEST(StixelKitti, RecallOnCarAndPoleLabels) {
+TEST(stixelKitti, RecallOnCarAndPoleLabels) {
   if (frames().empty()) GTEST_SKIP() << "no " << NERV_SHARED_DATA << "/kitti_raw_0926_seq";
   int cars = 0, cars_hit = 0, poles = 0, poles_hit = 0, hyps = 0, hyps_on_label = 0;
   for (const Frame& fr : frames()) {

@@ -1,0 +1,47 @@
+#include "sequence.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "kitti_writer.hpp"
+#include "world_builder.hpp"
+
+namespace nerv::synth {
+
+SceneSequence::SceneSequence(const SceneSpec& spec) : spec_(spec), world_(buildWorld(spec)) {}
+
+SynthFrame SceneSequence::render(int frame, const RenderOptions& options) {
+  SynthFrame f;
+  f.index = frame;
+  world_.setTime(frame / spec_.camera.fps);
+  f.pose = pose(frame);
+  f.images = renderFrame(world_, spec_.camera, f.pose, frame, spec_.seed, options);
+  f.labels = makeLabels(world_, camera(), f.pose, f.images);
+  return f;
+}
+
+SequenceSummary writeSequence(const SceneSpec& spec, int frames, const std::string& out_dir,
+                              const RenderOptions& options,
+                              const std::function<void(const SynthFrame&, double ms)>& progress) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  if (frames < 1) throw SceneError("number of frames must be at least 1");
+  SceneSequence seq(spec);
+  prepareOutput(out_dir);
+  SequenceSummary summary;
+  std::vector<CameraPose> poses;
+  for (int i = 0; i < frames; ++i) {
+    const auto t0 = Clock::now();
+    const SynthFrame f = seq.render(i, options);
+    writeFrame(out_dir, i, seq.camera(), f.images, f.labels);
+    poses.push_back(f.pose);
+    for (const Label& l : f.labels) summary.labels += l.type != "DontCare";
+    if (progress) progress(f, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  writeExtrinsics((std::filesystem::path(out_dir) / "extrinsics.txt").string(), poses);
+  summary.frames = frames;
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace nerv::synth
