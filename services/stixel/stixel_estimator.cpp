@@ -24,7 +24,7 @@ GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, co
   fp.inlier_tolerance_px = p.vd_inlier_tolerance_px;
   fp.min_inlier_rows = p.min_ground_rows;
   fp.min_disparity_span_px = p.min_ground_disparity_span_px;
-  const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px);
+  const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px, 2);
   const GroundLine line = fitGroundLine(vd, cam, fp);
   if (line.ok) {
     GroundModel g = groundModelFromLine(line.slope, line.intercept, cam, "v_disparity");
