@@ -61,6 +61,7 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
   std::vector<int> count(cells, 0);
   std::vector<int> top(cells, disparity.rows);  // highest (smallest) row of the cell
   std::vector<int> bottom(cells, 0);            // lowest (largest) row of the cell
+  int max_bin = -1;
   for (int v = 0; v < disparity.rows; ++v) {
     const float l = std::max(lo[v], d_min);
     const float u = std::min(hi[v], p.max_disparity_px);
@@ -69,7 +70,9 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
     for (int x = 0; x < disparity.cols; ++x) {
       const float d = row[x];
       if (!(d > l && d < u)) continue;  // also drops NaN
-      const size_t i = static_cast<size_t>(x / cw) * grid.bins + static_cast<int>(d);
+      const int b = static_cast<int>(d);
+      max_bin = std::max(max_bin, b);
+      const size_t i = static_cast<size_t>(x / cw) * grid.bins + b;
       ++count[i];
       top[i] = std::min(top[i], v);  // rows ascend: the first pixel sets it
       bottom[i] = v;                 // and the last one this
@@ -78,13 +81,14 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
   // count pixels of a strip w px wide at disparity d span count/w rows, and a row
   // at depth Z = fx*B/d is Z/fy metres high: filled = count*fx*B/(w*fy*d).
   // The highest pixel at row v reaches h*(d - dg(v))/d over the road.
+  grid.end_bin = std::max(grid.min_bin, max_bin + 1);
   grid.filled_m.assign(cells, 0.0f);
   grid.reach_m.assign(cells, 0.0f);
   grid.base_m.assign(cells, 0.0f);
   const double k = cam.fx * cam.baseline_m / cam.fy;
   for (int s = 0; s < grid.strips; ++s) {
     const int w = std::min(cw, disparity.cols - s * cw);
-    for (int b = grid.min_bin; b < grid.bins; ++b) {
+    for (int b = grid.min_bin; b < grid.end_bin; ++b) {
       const size_t i = grid.index(s, b);
       if (!count[i]) continue;
       const float d = b + 0.5f;
@@ -98,7 +102,7 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
 
 float obstacleScore(const OccupancyGrid& grid, int s, int k) {
   const int hw = obstacleHalfWindow(k);
-  const int a = std::max(grid.min_bin, k - hw), b = std::min(grid.bins, k + hw + 1);
+  const int a = std::max(grid.min_bin, k - hw), b = std::min(grid.end_bin, k + hw + 1);
   float filled = 0, reach = 0, base = std::numeric_limits<float>::infinity();
   for (int j = a; j < b; ++j) {
     const size_t i = grid.index(s, j);
@@ -121,7 +125,7 @@ std::vector<int> solveFreeSpace(const OccupancyGrid& grid, const FreeSpaceParams
   // jump, capped at jump_cap_bins so depth discontinuities at object edges stay cheap.
   constexpr float kMissingWeight = 3.0f;
   const int k0 = grid.min_bin;
-  const int n = grid.bins - k0;  // boundary states; state n = free
+  const int n = grid.end_bin - k0;  // boundary states; state n = free
   std::vector<int> result(grid.strips, -1);
   if (grid.strips == 0 || n <= 0) return result;
   const float lambda = p.smoothness_m;

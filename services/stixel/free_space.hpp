@@ -37,6 +37,7 @@ struct OccupancyGrid {
   int strips = 0, bins = 0;
   int column_width_px = 0;
   int min_bin = 0;                 // bins below (beyond max_distance_m) are not used
+  int end_bin = 0;                 // one past the highest bin holding a pixel
   std::vector<float> filled_m;     // strips x bins
   std::vector<float> reach_m;      // strips x bins
   std::vector<float> base_m;       // strips x bins

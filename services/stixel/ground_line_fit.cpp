@@ -16,8 +16,8 @@ struct Cell {
 
 // Strongest cells of each row: the road is the mode of a row's histogram below
 // the horizon, while scattered mismatches spread thinly over many bins.
-std::vector<Cell> votingCells(const VDisparity& vd, int image_width, const GroundLineFitParams& p) {
-  const int min_count = std::max(3, static_cast<int>(p.min_cell_fraction * image_width));
+std::vector<Cell> votingCells(const VDisparity& vd, const GroundLineFitParams& p) {
+  const int min_count = std::max(3, static_cast<int>(p.min_cell_fraction * vd.sampled_columns));
   std::vector<Cell> cells;
   std::vector<std::pair<int, int>> row;  // (count, bin)
   for (int v = 0; v < vd.rows; ++v) {
@@ -59,7 +59,7 @@ bool solveLine(const std::vector<Cell>& c, const std::vector<float>& w, float& a
 GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
                          const GroundLineFitParams& p) {
   GroundLine out;
-  const std::vector<Cell> cells = votingCells(vd, cam.width, p);
+  const std::vector<Cell> cells = votingCells(vd, p);
   if (cells.size() < 2) {
     out.reason = "too few v-disparity cells";
     return out;
@@ -73,27 +73,34 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   const double a_max = k / p.min_camera_height_m;
   const double vh_min = cam.cy - cam.fy * std::tan(max_t);
   const double vh_max = cam.cy + cam.fy * std::tan(max_t);
-  // Slope steps fine enough that a line drifts < 1 px over the image height.
-  const int na = std::clamp(static_cast<int>((a_max - a_min) * vd.rows) + 1, 32, 512);
+  // Slope steps such that a line drifts ~1.5 px (half a step) over the image
+  // height: finer than the IRLS capture band below.
+  const int na = std::clamp(static_cast<int>((a_max - a_min) * vd.rows / 3) + 1, 32, 256);
   const int nh = std::max(3, static_cast<int>(std::ceil(vh_max - vh_min)) + 1);
   std::vector<float> acc(static_cast<size_t>(na) * nh, 0.0f);
   std::vector<double> inv_a(na);
   for (int i = 0; i < na; ++i) inv_a[i] = 1.0 / (a_min + (a_max - a_min) * i / (na - 1));
   for (const Cell& c : cells) {
+    const double base = c.v - vh_min + 0.5;  // + 0.5: truncation below rounds
     for (int i = 0; i < na; ++i) {
-      const int j = static_cast<int>(std::lround(c.v - c.d * inv_a[i] - vh_min));
-      if (j >= 0 && j < nh) acc[static_cast<size_t>(i) * nh + j] += c.w;
+      const double x = base - c.d * inv_a[i];
+      if (x >= 0 && x < nh) acc[static_cast<size_t>(i) * nh + static_cast<int>(x)] += c.w;
     }
   }
-  // 3x3 box sum: a cell's 1 px disparity quantisation scatters its vote over
+  // 3x3 box sum (separable): a cell's disparity noise scatters its vote over
   // neighbouring horizon bins.
+  std::vector<float> rowsum(acc.size(), 0.0f);
+  for (int i = 0; i < na; ++i)
+    for (int j = 1; j + 1 < nh; ++j) {
+      const size_t o = static_cast<size_t>(i) * nh + j;
+      rowsum[o] = acc[o - 1] + acc[o] + acc[o + 1];
+    }
   float best = 0;
   int bi = -1, bj = -1;
   for (int i = 1; i + 1 < na; ++i)
     for (int j = 1; j + 1 < nh; ++j) {
-      float s = 0;
-      for (int di = -1; di <= 1; ++di)
-        for (int dj = -1; dj <= 1; ++dj) s += acc[static_cast<size_t>(i + di) * nh + j + dj];
+      const size_t o = static_cast<size_t>(i) * nh + j;
+      const float s = rowsum[o - nh] + rowsum[o] + rowsum[o + nh];
       if (s > best) best = s, bi = i, bj = j;
     }
   if (bi < 0) {
@@ -107,7 +114,7 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   // from twice the tolerance so a coarse Hough peak still captures the road.
   std::vector<float> w(cells.size());
   const float huber_px = 0.5f;
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < 30; ++it) {
     const float band = it == 0 ? 2 * p.inlier_tolerance_px : p.inlier_tolerance_px;
     for (size_t i = 0; i < cells.size(); ++i) {
       const float r = std::abs(cells[i].d - (a * cells[i].v + b));

@@ -19,7 +19,7 @@ struct GroundLineFitParams {
   int min_inlier_rows = 20;            // fewer image rows with inliers: weak fit
   float min_disparity_span_px = 5.0f;  // inliers must cover this disparity range (walls do not)
   float min_cell_fraction = 0.01f;     // cells with fewer pixels than this share of the width do not vote
-  int max_cells_per_row = 8;           // only a row's strongest cells vote
+  int max_cells_per_row = 4;           // only a row's strongest cells vote
 };
 
 struct GroundLine {

@@ -2,6 +2,7 @@
 // space -> stixels -> hypotheses (NERV reference slides 3, 10).
 #include "stixel_estimator.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "free_space.hpp"
@@ -24,7 +25,7 @@ GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, co
   fp.inlier_tolerance_px = p.vd_inlier_tolerance_px;
   fp.min_inlier_rows = p.min_ground_rows;
   fp.min_disparity_span_px = p.min_ground_disparity_span_px;
-  const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px);
+  const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px, 2);
   const GroundLine line = fitGroundLine(vd, cam, fp);
   if (line.ok) {
     GroundModel g = groundModelFromLine(line.slope, line.intercept, cam, "v_disparity");
@@ -33,7 +34,13 @@ GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, co
     return g;
   }
   // A weak fit never invents a road: the prior pose or an explicit "none".
-  if (prior.valid && p.use_extrinsics_prior && prior.height_m > 0) {
+  // The prior is checked like a fit: a pose no vehicle camera can have is ignored.
+  const bool prior_usable = prior.valid && std::isfinite(prior.pitch_deg) &&
+                            std::isfinite(prior.height_m) &&
+                            prior.height_m >= p.min_camera_height_m &&
+                            prior.height_m <= p.max_camera_height_m &&
+                            std::abs(prior.pitch_deg) <= p.max_pitch_deg;
+  if (p.use_extrinsics_prior && prior_usable) {
     float a = 0, b = 0;
     groundLineFromPose(prior.pitch_deg, prior.height_m, cam, a, b);
     GroundModel g = groundModelFromLine(a, b, cam, "extrinsics_prior");

@@ -14,7 +14,8 @@ struct VDisparity {
   int bins = 0;                 // disparity bins of 1 px: bin k holds [k, k+1)
   std::vector<int> count;       // rows x bins, pixels per cell
   std::vector<float> sum_d;     // rows x bins, sum of the cell's disparities
-  int valid_pixels = 0;
+  int valid_pixels = 0;          // of the sampled columns
+  int sampled_columns = 0;       // columns that voted (every column_step-th)
 
   int cellCount(int v, int k) const { return count[static_cast<size_t>(v) * bins + k]; }
   // Mean disparity of a cell: keeps the fit sub-pixel although the bins are 1 px.
@@ -25,7 +26,10 @@ struct VDisparity {
 };
 
 // disparity: CV_32F; values <= 0, non-finite or >= max_disparity_px are skipped.
-VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px);
+// column_step > 1 samples every column_step-th column: the road covers hundreds of
+// pixels per row, so half of them fix its histogram mode as well (and twice as fast).
+VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px,
+                             int column_step = 1);
 
 // True for a usable disparity value (positive, finite, below the histogram range).
 inline bool validDisparity(float d, float max_disparity_px) {

@@ -174,7 +174,15 @@ TEST(stixelNoGround, FrontoParallelWallGivesInvalidGroundOrThePrior) {
   EXPECT_NEAR(rp.ground.height_m, 1.6, 1e-4);
   EXPECT_NEAR(rp.ground.pitch_deg, 0.5, 1e-4);
 
-  // ...unless the prior is switched off.
+  // A prior no vehicle camera can have is ignored like a bad fit.
+  GroundPrior broken = prior;
+  broken.height_m = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(estimateStixels(wall, cam, Params{}, broken).ground.valid);
+  broken = prior;
+  broken.pitch_deg = 30.0f;
+  EXPECT_FALSE(estimateStixels(wall, cam, Params{}, broken).ground.valid);
+
+  // ...and so is every prior when it is switched off.
   Params no_prior;
   no_prior.use_extrinsics_prior = false;
   EXPECT_FALSE(estimateStixels(wall, cam, no_prior, prior).ground.valid);
