@@ -34,7 +34,7 @@ void expectProblem(const std::string& yaml, const std::string& needle) {
   EXPECT_EQ(msg.find('\n'), std::string::npos) << "not one line: " << msg;
 }
 
-TEST(SynthErrors, UnknownSceneKeyIsNamed) {
+TEST(synthErrors, UnknownSceneKeyIsNamed) {
   expectProblem("camera: {focal: 700}\n", "camera.focal");
   expectProblem("weather: rain\n", "'weather'");
   expectProblem("obstacles:\n  - {class: car, distance_m: 20, colour_name: red}\n", "obstacles[0].colour_name");
@@ -43,14 +43,14 @@ TEST(SynthErrors, UnknownSceneKeyIsNamed) {
   expectProblem("obstacles:\n  - {class: tank}\n", "obstacles[0].class");
 }
 
-TEST(SynthErrors, ImpossiblePlacementIsNamed) {
+TEST(synthErrors, ImpossiblePlacementIsNamed) {
   expectProblem("obstacles:\n  - {class: car, distance_m: -5}\n", "behind the camera");
   expectProblem("obstacles:\n  - {class: car, distance_m: 0}\n", "behind the camera");
   expectProblem("obstacles:\n  - {class: pole, distance_m: 12}\n  - {class: pedestrian, distance_m: 9, elevation_m: -0.5}\n",
                 "obstacle 1 (Pedestrian) is below the road");
 }
 
-TEST(SynthErrors, BadCalibrationIsNamed) {
+TEST(synthErrors, BadCalibrationIsNamed) {
   expectProblem("camera: {fx: 0}\n", "focal length");
   expectProblem("camera: {fx: -721.5}\n", "focal length");
   expectProblem("camera: {baseline_m: 0}\n", "baseline");
@@ -63,7 +63,7 @@ fs::path cliPath() {
   return fs::canonical("/proc/self/exe").parent_path().parent_path() / "bin" / "nerv_synth";
 }
 
-TEST(SynthErrors, CliPrintsTheMessageAndExitsWith2) {
+TEST(synthErrors, CliPrintsTheMessageAndExitsWith2) {
   const fs::path cli = cliPath();
   if (!fs::exists(cli)) GTEST_SKIP() << cli << " not built";
   const fs::path tmp = fs::temp_directory_path() / ("nerv_test_synth_cli_" + std::to_string(getpid()));

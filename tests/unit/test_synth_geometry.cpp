@@ -79,7 +79,7 @@ void expectRoadDisparity(const SceneSpec& spec, const SynthFrame& f, double pitc
   EXPECT_LT(worst, 0.01) << "largest road disparity error [px]";
 }
 
-TEST(SynthGeometry, RoadDisparityIsFxBOverZ) {
+TEST(synthGeometry, RoadDisparityIsFxBOverZ) {
   for (const auto& [pitch, roll, height] : {std::tuple{0.0, 0.0, 1.65}, std::tuple{2.5, 1.2, 1.4},
                                            std::tuple{-1.5, -2.0, 2.0}}) {
     const SceneSpec spec = emptyRoad(pitch, roll, height);
@@ -96,7 +96,7 @@ TEST(SynthGeometry, RoadDisparityIsFxBOverZ) {
   }
 }
 
-TEST(SynthGeometry, ObstacleDisparityMatchesItsPosition) {
+TEST(synthGeometry, ObstacleDisparityMatchesItsPosition) {
   SceneSpec spec = emptyRoad(0, 0, 1.65);
   ObstacleSpec car;
   car.cls = ObstacleClass::Car;
@@ -126,7 +126,7 @@ TEST(SynthGeometry, ObstacleDisparityMatchesItsPosition) {
   EXPECT_NEAR(l.rotation_y, -3.14159265358979 / 2, 1e-9);
 }
 
-TEST(SynthGeometry, LabelBoxesAreTightBoxesOfVisiblePixels) {
+TEST(synthGeometry, LabelBoxesAreTightBoxesOfVisiblePixels) {
   SceneSpec spec = loadScene(resolveScenePath("urban", NERV_SOURCE_DIR "/config/scenes"));
   resizeImage(spec, 621, 188);
   SceneSequence seq(spec);
@@ -163,7 +163,7 @@ TEST(SynthGeometry, LabelBoxesAreTightBoxesOfVisiblePixels) {
   }
 }
 
-TEST(SynthGeometry, ExtrinsicsFileMatchesCameraAndRenderedRoad) {
+TEST(synthGeometry, ExtrinsicsFileMatchesCameraAndRenderedRoad) {
   SceneSpec spec = loadScene(resolveScenePath("pitch_oscillation", NERV_SOURCE_DIR "/config/scenes"));
   resizeImage(spec, 310, 94);
   const std::string dir = (std::filesystem::temp_directory_path() / "nerv_test_synth_extrinsics").string();
@@ -200,7 +200,7 @@ TEST(SynthGeometry, ExtrinsicsFileMatchesCameraAndRenderedRoad) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(SynthGeometry, RenderingIsBitIdenticalForASeed) {
+TEST(synthGeometry, RenderingIsBitIdenticalForASeed) {
   SceneSpec spec = loadScene(resolveScenePath("wet_road", NERV_SOURCE_DIR "/config/scenes"));
   resizeImage(spec, 414, 125);
   RenderOptions single;

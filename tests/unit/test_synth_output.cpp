@@ -19,7 +19,7 @@ namespace {
 using namespace nerv::synth;
 namespace fs = std::filesystem;
 
-TEST(SynthOutput, OpenDatasetReadsTheSequenceAndItsCalibration) {
+TEST(synthOutput, OpenDatasetReadsTheSequenceAndItsCalibration) {
   SceneSpec spec = loadScene(resolveScenePath("wet_road", NERV_SOURCE_DIR "/config/scenes"));
   resizeImage(spec, 414, 125);
   const std::string dir = (fs::temp_directory_path() / "nerv_test_synth_output").string();

@@ -56,7 +56,7 @@ SceneSpec preset(const char* name) {
   return loadScene(resolveScenePath(name, NERV_SOURCE_DIR "/config/scenes"));
 }
 
-TEST(SynthRealism, SgbmD1OnUrbanIsLowOutsideTraps) {
+TEST(synthRealism, SgbmD1OnUrbanIsLowOutsideTraps) {
   SceneSequence seq(preset("urban"));
   D1 outside;
   for (int frame : {0, 5, 10}) {
@@ -70,7 +70,7 @@ TEST(SynthRealism, SgbmD1OnUrbanIsLowOutsideTraps) {
   EXPECT_GT(outside.density(), 0.8);
 }
 
-TEST(SynthRealism, WetRoadTrapsMakeSgbmFail) {
+TEST(synthRealism, WetRoadTrapsMakeSgbmFail) {
   SceneSequence seq(preset("wet_road"));
   D1 inside, outside;
   for (int frame : {0, 5, 10}) {
