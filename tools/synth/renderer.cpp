@@ -14,11 +14,11 @@
 namespace nerv::synth {
 namespace {
 
-constexpr int kTile = 16;
+constexpr int kTile = 8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kShadowMargin = 0.45;  // contact shadow reaches this far beyond a footprint [m]
 
-// Screen-space binning: for each 16x16 tile, the solids whose projected bounds
+// Screen-space binning: for each 8x8 tile, the solids whose projected bounds
 // (in either view) overlap it. `mirrored` bins the solids' reflections in the
 // road instead (for rays reflected by wet patches).
 struct Bins {
@@ -84,8 +84,9 @@ struct Hit {
 };
 
 // Nearer hit (than hit.t) of the ray with one solid.
-void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, Hit& hit) {
+void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, const Vec3& inv_d, Hit& hit) {
   const Solid& s = w.solids[idx];
+  if (!overlapsBox(s.world_lo, s.world_hi, o, inv_d, 0.0, hit.t)) return;
   const Vec3 ol = s.toLocal(o), dl = s.dirToLocal(d);
   const Vec3 inv(1.0 / dl.x(), 1.0 / dl.y(), 1.0 / dl.z());
   if (!overlapsBox(s.lo, s.hi, ol, inv, 0.0, hit.t)) return;
@@ -103,7 +104,8 @@ void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, Hit& hit)
 }
 
 void traceSolids(const World& w, const std::vector<int>& cand, const Vec3& o, const Vec3& d, Hit& hit) {
-  for (const int idx : cand) traceSolid(w, idx, o, d, hit);
+  const Vec3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
+  for (const int idx : cand) traceSolid(w, idx, o, d, inv_d, hit);
 }
 
 Hit trace(const World& w, const std::vector<int>& cand, const Vec3& o, const Vec3& d, bool with_ground) {
@@ -256,6 +258,10 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
   out.trap_mask.create(H, W, CV_8U);
   out.unoccluded_px.assign(w.solids.size(), 0);
   std::mutex merge;
+  // Occlusion levels are only reported for labelled obstacles.
+  std::vector<char> occlusion_needed(w.solids.size());
+  for (size_t i = 0; i < w.solids.size(); ++i)
+    occlusion_needed[i] = !w.solids[i].type.empty() && w.solids[i].type != "DontCare";
   const Vec3 centres[2] = {pose.centre, pose.rightCentre(k.baseline_m)};
   auto ray = [&](double su, double sv) {
     return Vec3(pose.right * ((su - k.cx) / k.fx) + pose.down * ((sv - k.cy) / k.fy) + pose.forward);
@@ -303,9 +309,11 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
             trap = w.solids[hit.solid].parts[hit.part].trap;
         }
         out.trap_mask.at<uchar>(v, u) = trap ? 255 : 0;
+        const Vec3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
         for (const int idx : cand) {
+          if (!occlusion_needed[idx]) continue;
           Hit alone;
-          traceSolid(w, idx, pose.centre, d, alone);
+          traceSolid(w, idx, pose.centre, d, inv_d, alone);
           if (alone.solid == idx) ++unoccluded[idx];
         }
         for (int view = 0; view < 2; ++view) {
