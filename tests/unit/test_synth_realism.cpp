@@ -88,3 +88,23 @@ TEST(synthRealism, WetRoadTrapsMakeSgbmFail) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(synthRealism, TexturelessAndRepetitiveTrapsRaiseSgbmError) {
+  SceneSequence seq(preset("textureless"));
+  D1 inside, outside;
+  for (int frame : {0, 8}) {
+    const SynthFrame f = seq.render(frame);
+    const cv::Mat d = sgbm(f.images.left, f.images.right);
+    accumulate(d, f, true, inside);
+    accumulate(d, f, false, outside);
+  }
+  std::printf("textureless: D1 inside traps %.2f %% over %ld px (density %.1f %%), outside %.2f %% over %ld px\n",
+              100 * inside.rate(), inside.pixels, 100 * inside.density(), 100 * outside.rate(), outside.pixels);
+  ASSERT_GT(inside.pixels, 5000);
+  EXPECT_LT(outside.rate(), 0.10);
+  EXPECT_GT(inside.rate(), 2 * outside.rate());
+}
+
+}  // namespace
