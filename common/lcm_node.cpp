@@ -98,6 +98,18 @@ int64_t Node::counter(const std::string& name) const {
   return it == counters_.end() ? 0 : it->second;
 }
 
+void Node::noteSeq(const std::string& channel, int64_t seq) {
+  auto [it, fresh] = last_seq_.try_emplace(channel, seq);
+  if (fresh) return;
+  const int64_t gap = seq - it->second - 1;
+  // A jump backwards or far ahead is a restarted source or a replay, not a loss.
+  if (gap > 0 && gap < 1000) {
+    countDropped(gap);
+    count("lost_" + channel, gap);
+  }
+  it->second = seq;
+}
+
 void Node::guarded(const std::function<void()>& body) {
   try {
     body();

@@ -10,11 +10,18 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "message_check.hpp"
 
 namespace nerv {
+
+template <class T, class = void>
+struct HasFrameHeader : std::false_type {};
+template <class T>
+struct HasFrameHeader<T, std::void_t<decltype(std::declval<T>().header.seq)>> : std::true_type {};
 
 // Default bus: stays on this host (ttl=0) with a receive buffer for full frames.
 constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
@@ -86,6 +93,10 @@ class Node {
     }
   };
   void guarded(const std::function<void()>& body);
+  // Frames missing from a channel's seq sequence were lost on the way (UDP
+  // buffer overrun, LCM queue full); they are counted as dropped.
+  void noteSeq(const std::string& channel, int64_t seq);
+  std::map<std::string, int64_t> last_seq_;
   void publishHealth();
 
   NodeOptions options_;
@@ -117,6 +128,7 @@ void Node::subscribe(const std::string& base_channel, std::function<void(const T
       error("decode_failed", "message on " + ch + " does not decode as " + T::getTypeName());
       return;
     }
+    if constexpr (HasFrameHeader<T>::value) noteSeq(ch, msg.header.seq);
     guarded([&] { handler(msg); });
   };
   lcm::Subscription* s =
