@@ -3,9 +3,13 @@
 //   nerv_export LOG --json [--no-blobs]     one JSON object per event on stdout
 //   nerv_export LOG --disparity-png DIR     each DISPARITY as KITTI 16-bit PNG (d*256, 0 invalid)
 //   nerv_export LOG --summary FILE          run summary as JSON (and as text on stdout)
+//   nerv_export --live --json [--no-blobs] [--lcm-url URL] [--channels REGEX] [--count N] [--seconds S]
+//                                           the same JSON lines from live traffic on the bus
 #include <lcm/lcm-cpp.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -21,31 +25,79 @@ using namespace nerv;
 
 namespace {
 
+// One JSON line per event (shared by log and live export).
+void printEvent(const std::string& channel, int64_t utime, const void* data, int size, bool blobs,
+                int64_t& unknown) {
+  JsonWriter msg(blobs);
+  const std::string type = writeMessageJson(data, size, msg);
+  JsonWriter line(blobs);
+  line.beginObject();
+  line.field("channel", channel);
+  line.field("utime", utime);
+  line.field("type", type.empty() ? std::string("unknown") : type);
+  line.key("message");
+  if (type.empty()) {
+    if (channel != "LCM_SELF_TEST") ++unknown;  // LCM's own start-up probe
+    line.value(std::vector<uint8_t>(static_cast<const uint8_t*>(data),
+                                    static_cast<const uint8_t*>(data) + size));
+    line.endObject();
+    std::cout << line.str() << '\n';
+  } else {
+    // The message object is spliced in as already-written JSON.
+    std::cout << line.str() << msg.str() << "}\n";
+  }
+}
+
+struct LivePrinter {
+  bool blobs;
+  int64_t count = 0, unknown = 0;
+  void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    printEvent(channel, rbuf->recv_utime, rbuf->data, rbuf->data_size, blobs, unknown);
+    std::cout.flush();
+    ++count;
+  }
+};
+
+volatile sig_atomic_t g_stop = 0;
+
+int exportLive(int argc, char** argv) {
+  std::string url, channels = ".*";
+  bool blobs = true;
+  long long max_count = -1;
+  double seconds = -1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error("flag " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--live" || a == "--json") continue;
+    if (a == "--no-blobs") blobs = false;
+    else if (a == "--lcm-url") url = value();
+    else if (a == "--channels") channels = value();
+    else if (a == "--count") max_count = std::stoll(value());
+    else if (a == "--seconds") seconds = std::stod(value());
+    else throw std::runtime_error("unknown flag '" + a + "'");
+  }
+  lcm::LCM lcm(url);
+  if (!lcm.good()) throw std::runtime_error("LCM cannot start on '" + url + "'");
+  LivePrinter printer{blobs};
+  lcm.subscribe(channels, &LivePrinter::onMessage, &printer);
+  signal(SIGINT, [](int) { g_stop = 1; });
+  signal(SIGTERM, [](int) { g_stop = 1; });
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!g_stop && (max_count < 0 || printer.count < max_count) &&
+         (seconds < 0 || std::chrono::steady_clock::now() < end))
+    lcm.handleTimeout(50);
+  return 0;
+}
+
 int exportJson(const std::string& path, bool blobs) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw std::runtime_error("log " + path + " cannot be read");
   int64_t unknown = 0;
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    JsonWriter msg(blobs);
-    const std::string type = writeMessageJson(e->data, e->datalen, msg);
-    JsonWriter line(blobs);
-    line.beginObject();
-    line.field("channel", e->channel);
-    line.field("utime", e->timestamp);
-    line.field("type", type.empty() ? std::string("unknown") : type);
-    line.key("message");
-    if (type.empty()) {
-      if (e->channel != "LCM_SELF_TEST") ++unknown;  // LCM's own start-up probe
-      line.value(std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
-                                      static_cast<const uint8_t*>(e->data) + e->datalen));
-      line.endObject();
-      std::cout << line.str() << '\n';
-    } else {
-      // The message object is spliced in as already-written JSON.
-      std::string s = line.str();
-      std::cout << s << msg.str() << "}\n";
-    }
-  }
+  while (const lcm::LogEvent* e = log.readNextEvent())
+    printEvent(e->channel, e->timestamp, e->data, e->datalen, blobs, unknown);
   if (unknown) std::fprintf(stderr, "nerv_export: %lld events of unknown type\n", (long long)unknown);
   return 0;
 }
@@ -94,6 +146,7 @@ int summary(const std::string& path, const std::string& out) {
 
 int main(int argc, char** argv) {
   try {
+    if (argc >= 2 && std::string(argv[1]) == "--live") return exportLive(argc, argv);
     if (argc < 3) throw std::runtime_error("usage: nerv_export LOG --json [--no-blobs] | --disparity-png DIR | --summary FILE");
     const std::string log = argv[1], mode = argv[2];
     if (!std::filesystem::exists(log)) throw std::runtime_error("log " + log + " does not exist");
