@@ -20,6 +20,7 @@
 
 #include "detection_eval.hpp"
 #include "json_writer.hpp"
+#include "log_decode.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -60,15 +61,6 @@ Options parse(int argc, char** argv) {
   if (!std::filesystem::exists(o.log)) throw std::runtime_error("log " + o.log + " does not exist");
   if (!std::filesystem::is_directory(o.labels)) throw std::runtime_error("label folder " + o.labels + " does not exist");
   return o;
-}
-
-template <class T>
-bool decodeAs(const lcm::LogEvent& e, T& msg) {
-  if (e.datalen < 8) return false;
-  const auto* b = static_cast<const uint8_t*>(e.data);
-  uint64_t h = 0;
-  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  return static_cast<int64_t>(h) == T::getHash() && msg.decode(e.data, 0, e.datalen) >= 0;
 }
 
 std::string frameName(const std::string& frame_id) { return frame_id.substr(frame_id.find_last_of('/') + 1); }
@@ -129,7 +121,7 @@ int main(int argc, char** argv) {
       stixels_t stix;
       surface_normals_t normals;
       extrinsics_t ext;
-      if (decodeAs(*e, det)) {
+      if (decodeEvent(*e, det)) {
         if (seen[det.header.seq]) continue;  // a replayed or duplicated frame counts once
         seen[det.header.seq] = true;
         stage_ms["validator"].push_back(det.processing_ms);
@@ -148,13 +140,13 @@ int main(int argc, char** argv) {
         all.add(evaluateFrame(hyps, labels, o.params));
         kept.add(evaluateFrame(validated, labels, o.params));
         ++frames;
-      } else if (decodeAs(*e, disp)) {
+      } else if (decodeEvent(*e, disp)) {
         stage_ms["stereo_matcher"].push_back(disp.processing_ms);
-      } else if (decodeAs(*e, stix)) {
+      } else if (decodeEvent(*e, stix)) {
         stage_ms["stixel"].push_back(stix.processing_ms);
-      } else if (decodeAs(*e, normals)) {
+      } else if (decodeEvent(*e, normals)) {
         stage_ms["snv_extrinsic"].push_back(normals.processing_ms);
-      } else if (decodeAs(*e, ext) && !poses.empty()) {
+      } else if (decodeEvent(*e, ext) && !poses.empty()) {
         if (const TruePose* p = findPose(poses, frameName(ext.header.frame_id)); p && ext.valid) {
           pitch_err.push_back(std::fabs(ext.pitch_deg - p->pitch));
           roll_err.push_back(std::fabs(ext.roll_deg - p->roll));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "json_writer.hpp"
+#include "log_decode.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -19,15 +20,6 @@
 
 namespace nerv {
 namespace {
-
-template <class T>
-bool decodeAs(const lcm::LogEvent& e, T& msg) {
-  if (e.datalen < 8) return false;
-  const auto* b = static_cast<const uint8_t*>(e.data);
-  uint64_t h = 0;
-  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  return static_cast<int64_t>(h) == T::getHash() && msg.decode(e.data, 0, e.datalen) >= 0;
-}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -73,21 +65,21 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     extrinsics_t ext;
     detections_t det;
     health_t health;
-    if (decodeAs(*e, frame)) {
+    if (decodeEvent(*e, frame)) {
       FrameRow& r = frames[frame.header.seq];
       r.frame_id = frame.header.frame_id;
       r.frame_event_utime = e->timestamp;
       if (first_frame_utime < 0) first_frame_utime = e->timestamp;
-    } else if (decodeAs(*e, disp)) {
+    } else if (decodeEvent(*e, disp)) {
       stage_ms["stereo_matcher"].push_back(disp.processing_ms);
-    } else if (decodeAs(*e, stix)) {
+    } else if (decodeEvent(*e, stix)) {
       stage_ms["stixel"].push_back(stix.processing_ms);
       FrameRow& r = frames[stix.header.seq];
       r.ground_source = stix.ground.source;
       r.ground_height_m = stix.ground.height_m;
-    } else if (decodeAs(*e, normals)) {
+    } else if (decodeEvent(*e, normals)) {
       stage_ms["snv_extrinsic"].push_back(normals.processing_ms);
-    } else if (decodeAs(*e, ext)) {
+    } else if (decodeEvent(*e, ext)) {
       FrameRow& r = frames[ext.header.seq];
       r.has_extrinsics = true;
       r.extrinsics_valid = ext.valid;
@@ -95,7 +87,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       r.roll_deg = ext.roll_deg;
       r.height_m = ext.height_m;
       r.confidence = ext.confidence;
-    } else if (decodeAs(*e, det)) {
+    } else if (decodeEvent(*e, det)) {
       stage_ms["validator"].push_back(det.processing_ms);
       FrameRow& r = frames[det.header.seq];
       r.hypotheses = det.num_detections;
@@ -105,7 +97,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       latencies.push_back(r.latency_ms);
       last_detection_utime = std::max(last_detection_utime, e->timestamp);
       ++detections_events;
-    } else if (decodeAs(*e, health)) {
+    } else if (decodeEvent(*e, health)) {
       last_health[health.service + "/" + health.instance] = health;
     }
   }
