@@ -50,6 +50,7 @@ void LogFrameReader::absorb(const lcm::LogEvent& e) {
     ++stats_.frame_messages;
     const int64_t seq = msg.header.seq;
     if (seq < options_.seq_min || seq > options_.seq_max) return true;
+    if (!options_.seqs.empty() && !options_.seqs.count(seq)) return true;
     if (handed_out_.count(seq)) {
       ++stats_.duplicates;
       return true;

@@ -52,6 +52,7 @@ struct LogReadStats {
 struct LogFrameOptions {
   int64_t seq_min = std::numeric_limits<int64_t>::min();  // frames outside [min, max] are skipped
   int64_t seq_max = std::numeric_limits<int64_t>::max();
+  std::set<int64_t> seqs;      // non-empty: only these frames
   bool keep_images = true;     // false: stereo and disparity pixels are dropped on read
   int max_pending = 16;        // incomplete frames held before the oldest is handed out
 };
