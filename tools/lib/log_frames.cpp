@@ -42,7 +42,15 @@ void LogFrameReader::absorb(const lcm::LogEvent& e) {
     using T = typename decltype(tag)::type;
     if (fp != T::getHash()) return false;
     T msg;
-    if (msg.decode(e.data, 0, e.datalen) < 0) {
+    // Generated decoders can throw on a cut or corrupt buffer (a garbage array
+    // length makes std::vector throw), not only return < 0.
+    bool ok = false;
+    try {
+      ok = msg.decode(e.data, 0, e.datalen) >= 0;
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (!ok) {
       ++stats_.broken;
       ++stats_.broken_per_channel[e.channel];
       return true;
