@@ -76,8 +76,12 @@ void Node::error(const std::string& counter, const std::string& message) {
   ++counters_[counter];
   last_error_ = counter + ": " + message;
   const int64_t now = nowUtime();
-  // At most ten lines a second, so a flood of bad input cannot flood the log.
-  if (now - last_error_print_utime_ > 100000) {
+  // At most 20 lines a second, so a flood of bad input cannot flood the log.
+  if (now - error_window_start_utime_ > 1000000) {
+    error_window_start_utime_ = now;
+    error_lines_in_window_ = 0;
+  }
+  if (error_lines_in_window_++ < 20) {
     if (suppressed_errors_ > 0)
       std::fprintf(stderr, "%s: (%d similar errors not shown)\n", options_.service.c_str(),
                    suppressed_errors_);

@@ -100,6 +100,8 @@ class Node {
   int64_t last_health_utime_ = 0;
   int64_t errors_at_last_health_ = 0;
   int64_t last_error_print_utime_ = 0;
+  int64_t error_window_start_utime_ = 0;
+  int error_lines_in_window_ = 0;
   int suppressed_errors_ = 0;
   std::string host_;
 };

@@ -14,6 +14,11 @@ struct Params {
   float max_ground_fraction = 0.6f;   // reject as ground above this share of ground-like normals
   float max_error_fraction = 0.6f;    // reject as error above this share of error-like normals
   int min_normals = 5;                // fewer normals: not enough evidence
+  float min_error_density = 0.5f;     // "error" needs at least this normals/samples density (dense blobs)
+  bool keep_unvalidated = true;       // keep hypotheses without enough normals (a planner never loses one silently)
+  float min_height_m = 0.2f;          // metric height below this (when known, > 0) is implausible -> error
+  float max_height_m = 4.5f;          // metric height above this is implausible -> error
+  float max_width_m = 12.0f;          // metric width above this is implausible -> error
 };
 
 Params readParams(ConfigSection& section);

@@ -27,6 +27,7 @@ public class LogDecode {
     while (true) {
       lcm.logging.Log.Event ev;
       try { ev = log.readNext(); } catch (java.io.EOFException eof) { break; }
+      if (ev.channel.equals("LCM_SELF_TEST")) continue;  // LCM's own start-up probe, not a typed message
       long fingerprint = new DataInputStream(new ByteArrayInputStream(ev.data)).readLong();
       Class<?> type = types.get(fingerprint);
       if (type == null) { System.out.println("unknown type on " + ev.channel); failures++; continue; }

@@ -25,7 +25,8 @@ struct Listener {
   std::map<std::string, std::map<std::string, int64_t>> counters;  // service -> counter -> value
   std::map<std::string, int64_t> outputs;                          // channel -> count
   void health(const lcm::ReceiveBuffer*, const std::string&, const health_t* h) {
-    for (int i = 0; i < h->num_counters; ++i) counters[h->service][h->counter_names[i]] = h->counter_values[i];
+    auto& mine = counters[h->service];  // present once the service has reported at all
+    for (int i = 0; i < h->num_counters; ++i) mine[h->counter_names[i]] = h->counter_values[i];
   }
   void disparity(const lcm::ReceiveBuffer*, const std::string& ch, const disparity_t*) { ++outputs[ch]; }
   void stixels(const lcm::ReceiveBuffer*, const std::string& ch, const stixels_t*) { ++outputs[ch]; }
@@ -66,23 +67,41 @@ int main(int argc, char** argv) {
   lcm.subscribe("DISPARITY", &Listener::disparity, &l);
   lcm.subscribe("STIXELS", &Listener::stixels, &l);
 
+  // The services must be listening before anything is sent.
+  const auto ready_by = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while ((!l.counters.count("stereo_matcher") || !l.counters.count("stixel")) &&
+         std::chrono::steady_clock::now() < ready_by)
+    lcm.handleTimeout(50);
+
+  // The services keep short queues (older frames are dropped under load), so
+  // each message gets time to be handled before the next one.
+  auto settle = [&] {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(150);
+    while (std::chrono::steady_clock::now() < until) lcm.handleTimeout(20);
+  };
+
   // 1. bytes that are no message at all
   const std::string garbage = "this is not an LCM message";
   lcm.publish("STEREO_FRAME", garbage.data(), garbage.size());
+  settle();
   lcm.publish("DISPARITY", garbage.data(), garbage.size());
+  settle();
   // 2. size field disagrees with the data
   stereo_frame_t f = frame(100);
   f.left.size += 7;
   lcm.publish("STEREO_FRAME", &f);
+  settle();
   // 3. left and right of different sizes
   f = frame(101);
   cv::Mat small(60, 320, CV_8UC1, cv::Scalar(3));
   f.right = encodeImage(small, "gray8");
   lcm.publish("STEREO_FRAME", &f);
+  settle();
   // 4. NaN calibration
   f = frame(102);
   f.calib.fx = NAN;
   lcm.publish("STEREO_FRAME", &f);
+  settle();
   // 5. a disparity whose size does not match its calibration
   disparity_t d;
   d.header = frame(103).header;
@@ -90,9 +109,11 @@ int main(int argc, char** argv) {
   encodeDisparity(cv::Mat(50, 50, CV_32F, cv::Scalar(5.f)), "u16le", d);
   encodeConfidence(cv::Mat(), d);
   lcm.publish("DISPARITY", &d);
+  settle();
   // 6. a good frame: the services must still work
   f = frame(104);
   lcm.publish("STEREO_FRAME", &f);
+  settle();
 
   auto expectations = [&] {
     auto c = [&](const char* svc, const char* name) { return l.counters[svc][name]; };

@@ -50,11 +50,13 @@ wait_until() {
 
 # A short rendered sequence (cached in the build tree).
 synthetic_sequence() {  # synthetic_sequence SCENE FRAMES -> prints the folder
-  local dir="$NERV_BUILD/test_data/$1_$2"
-  if [[ ! -f "$dir/.complete" ]]; then
+  local dir="$NERV_BUILD/test_data/$1_$2" stamp
+  # Re-rendered whenever the generator or the scene changes.
+  stamp=$(cat "$BIN/nerv_synth" "$NERV_ROOT/config/scenes/$1.yaml" | md5sum | cut -d' ' -f1)
+  if [[ "$(cat "$dir/.complete" 2>/dev/null)" != "$stamp" ]]; then
     rm -rf "$dir"
-    "$BIN/nerv_synth" --scene "$1" --frames "$2" --out "$dir" >/dev/null 2>&1 || fail "nerv_synth $1 failed"
-    touch "$dir/.complete"
+    "$BIN/nerv_synth" --scene "$1" --frames "$2" --out "$dir" --quiet >/dev/null 2>&1 || fail "nerv_synth $1 failed"
+    echo "$stamp" >"$dir/.complete"
   fi
   echo "$dir"
 }

@@ -29,8 +29,9 @@ dets=$(grep '"channel":"DETECTIONS"' "$out/events.jsonl" | grep -o '"header":{"s
 [[ "$frames" == "$dets" ]] || fail "DETECTIONS headers differ from STEREO_FRAME headers:\n$frames\nvs\n$dets"
 pass "all 6 frames detected with the source's seq and utime"
 
+grep '"channel":"NERV_HEALTH"' "$out/events.jsonl" >"$out/health.jsonl"
 for s in "${SERVICES[@]}" source; do
-  grep '"channel":"NERV_HEALTH"' "$out/events.jsonl" | grep -q "\"service\":\"$s\"" || fail "no NERV_HEALTH from $s"
+  grep -q "\"service\":\"$s\"" "$out/health.jsonl" || fail "no NERV_HEALTH from $s"
 done
 pass "every service published NERV_HEALTH"
 

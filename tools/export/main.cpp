@@ -35,7 +35,7 @@ int exportJson(const std::string& path, bool blobs) {
     line.field("type", type.empty() ? std::string("unknown") : type);
     line.key("message");
     if (type.empty()) {
-      ++unknown;
+      if (e->channel != "LCM_SELF_TEST") ++unknown;  // LCM's own start-up probe
       line.value(std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
                                       static_cast<const uint8_t*>(e->data) + e->datalen));
       line.endObject();

@@ -55,7 +55,7 @@ void write(JsonWriter& j, const stereo_calibration_t& m) {
   j.field("cx", m.cx);
   j.field("cy", m.cy);
   j.field("baseline_m", m.baseline_m);
-  j.field("rectified", m.rectified);
+  j.field("rectified", m.rectified != 0);  // LCM boolean
   array(j, "left_K", m.left_K, 9);
   array(j, "left_D", m.left_D, 5);
   array(j, "right_K", m.right_K, 9);
@@ -106,7 +106,7 @@ void write(JsonWriter& j, const disparity_t& m) {
 
 void write(JsonWriter& j, const ground_model_t& m) {
   j.beginObject();
-  j.field("valid", m.valid);
+  j.field("valid", m.valid != 0);  // LCM boolean
   j.field("source", m.source);
   j.field("vd_slope", m.vd_slope);
   j.field("vd_intercept", m.vd_intercept);
@@ -198,7 +198,7 @@ void write(JsonWriter& j, const surface_normals_t& m) {
 void write(JsonWriter& j, const extrinsics_t& m) {
   j.beginObject();
   j.key("header"); write(j, m.header);
-  j.field("valid", m.valid);
+  j.field("valid", m.valid != 0);  // LCM boolean
   j.field("status", m.status);
   j.field("pitch_deg", m.pitch_deg);
   j.field("roll_deg", m.roll_deg);
@@ -233,7 +233,7 @@ void write(JsonWriter& j, const detection_t& m) {
   j.field("distance_m", m.distance_m);
   j.field("label", m.label);
   j.field("score", m.score);
-  j.field("kept", m.kept);
+  j.field("kept", m.kept != 0);  // LCM boolean
   j.field("reason", m.reason);
   j.endObject();
 }

@@ -2,7 +2,7 @@
 //
 //   nerv_source --data DIR [--rate HZ] [--in-flight K] [--encoding gray8|bgr8|png|jpeg]
 //               [--frames N] [--wait-for svc,svc] [--drain-timeout S] [--lcm-url URL]
-//               [--prefix P] [--no-wait] [--check]
+//               [--prefix P] [--no-wait] [--check] [--repeat N]
 //
 // --rate 0 publishes as fast as the pipeline takes frames: at most K frames
 // without DETECTIONS at any time. After the last frame it waits for every
@@ -32,6 +32,7 @@ struct Options {
   double rate_hz = 10;
   int in_flight = 2;
   int max_frames = -1;
+  int repeat = 1;
   double drain_timeout_s = 30, startup_timeout_s = 20;
   std::set<std::string> wait_for;
   bool wait_detections = true;
@@ -62,6 +63,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--in-flight") o.in_flight = static_cast<int>(number());
     else if (a == "--encoding") o.encoding = value();
     else if (a == "--frames") o.max_frames = static_cast<int>(number());
+    else if (a == "--repeat") o.repeat = static_cast<int>(number());
     else if (a == "--drain-timeout") o.drain_timeout_s = number();
     else if (a == "--startup-timeout") o.startup_timeout_s = number();
     else if (a == "--lcm-url") o.lcm_url = value();
@@ -77,6 +79,7 @@ Options parse(int argc, char** argv) {
   if (o.data.empty() && o.max_frames != 0) throw std::runtime_error("--data DIR is required");
   if (o.rate_hz < 0) throw std::runtime_error("--rate must be >= 0");
   if (o.in_flight < 1) throw std::runtime_error("--in-flight must be >= 1");
+  if (o.repeat < 1) throw std::runtime_error("--repeat must be >= 1");
   if (o.encoding != "gray8" && o.encoding != "bgr8" && o.encoding != "png" && o.encoding != "jpeg")
     throw std::runtime_error("--encoding must be gray8, bgr8, png or jpeg");
   return o;
@@ -100,11 +103,12 @@ int play(const Options& o) {
   // --frames 0 without data: only wait for the services' health (used by replay).
   const Dataset ds = o.data.empty() ? Dataset{} : openDataset(o.data);
   if (o.check_only) return 0;  // --check: the dataset opens, nothing else to do
-  const size_t count = o.max_frames >= 0 ? std::min<size_t>(o.max_frames, ds.frames.size())
-                                         : ds.frames.size();
+  const size_t distinct = o.max_frames >= 0 ? std::min<size_t>(o.max_frames, ds.frames.size())
+                                            : ds.frames.size();
+  const size_t count = distinct * o.repeat;  // --repeat plays the sequence again with new seqs
   // Frames are read before the clock starts so disk speed does not shape the stream.
   std::vector<stereo_frame_t> frames;
-  for (size_t i = 0; i < count; ++i) frames.push_back(makeFrame(ds, ds.frames[i], o.encoding));
+  for (size_t i = 0; i < distinct; ++i) frames.push_back(makeFrame(ds, ds.frames[i], o.encoding));
 
   NodeOptions opts;
   opts.service = "source";
@@ -152,7 +156,7 @@ int play(const Options& o) {
              clock::now() < wait_until && !Node::stopRequested())
         node.poll(5);
     }
-    stereo_frame_t& msg = frames[i];
+    stereo_frame_t& msg = frames[i % distinct];
     msg.header.seq = static_cast<int64_t>(i);
     msg.header.utime = nowUtime();
     node.publish("STEREO_FRAME", msg);

@@ -7,6 +7,7 @@ namespace nerv::synth {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxLabelDistance_m = 80.0;
 
 double wrapAngle(double a) {
   while (a > kPi) a -= 2 * kPi;
@@ -64,7 +65,9 @@ std::vector<Label> makeLabels(const World& world, const StereoCamera& k, const C
     l.right = x1[i];
     l.bottom = y1[i];
     l.visible_px = count[i];
-    if (s.type != "DontCare") {
+    // Obstacles beyond the labelled range are DontCare, as in KITTI's hand labels.
+    if (s.type != "DontCare" && pose.toCamera(s.base).z() > kMaxLabelDistance_m) l.type = "DontCare";
+    if (l.type != "DontCare") {
       l.truncation = truncation(s, k, pose);
       const int unoccluded = std::max(count[i], frame.unoccluded_px[i]);
       const double visible = double(count[i]) / unoccluded;

@@ -26,6 +26,8 @@ struct Label {
 };
 
 // Objects and DontCare structures with at least `min_pixels` visible pixels.
+// Obstacles more than 80 m ahead and background structure (buildings, trees,
+// fences, guard rails) are DontCare.
 std::vector<Label> makeLabels(const World& world, const StereoCamera& camera, const CameraPose& pose,
                               const RenderedFrame& frame, int min_pixels = 1);
 

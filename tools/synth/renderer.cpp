@@ -2,6 +2,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -13,11 +14,11 @@
 namespace nerv::synth {
 namespace {
 
-constexpr int kTile = 16;
+constexpr int kTile = 8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kShadowMargin = 0.45;  // contact shadow reaches this far beyond a footprint [m]
 
-// Screen-space binning: for each 16x16 tile, the solids whose projected bounds
+// Screen-space binning: for each 8x8 tile, the solids whose projected bounds
 // (in either view) overlap it. `mirrored` bins the solids' reflections in the
 // road instead (for rays reflected by wet patches).
 struct Bins {
@@ -83,8 +84,9 @@ struct Hit {
 };
 
 // Nearer hit (than hit.t) of the ray with one solid.
-void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, Hit& hit) {
+void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, const Vec3& inv_d, Hit& hit) {
   const Solid& s = w.solids[idx];
+  if (!overlapsBox(s.world_lo, s.world_hi, o, inv_d, 0.0, hit.t)) return;
   const Vec3 ol = s.toLocal(o), dl = s.dirToLocal(d);
   const Vec3 inv(1.0 / dl.x(), 1.0 / dl.y(), 1.0 / dl.z());
   if (!overlapsBox(s.lo, s.hi, ol, inv, 0.0, hit.t)) return;
@@ -102,7 +104,8 @@ void traceSolid(const World& w, int idx, const Vec3& o, const Vec3& d, Hit& hit)
 }
 
 void traceSolids(const World& w, const std::vector<int>& cand, const Vec3& o, const Vec3& d, Hit& hit) {
-  for (const int idx : cand) traceSolid(w, idx, o, d, hit);
+  const Vec3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
+  for (const int idx : cand) traceSolid(w, idx, o, d, inv_d, hit);
 }
 
 Hit trace(const World& w, const std::vector<int>& cand, const Vec3& o, const Vec3& d, bool with_ground) {
@@ -196,10 +199,9 @@ float contactShadow(const World& w, const std::vector<int>& cand, const Vec3& p)
 
 // Colour seen along one sample ray; `mcand` are the solids whose reflection
 // may appear at this pixel.
-cv::Vec3f shade(const Context& ctx, const std::vector<int>& cand, const std::vector<int>& mcand,
-                const Vec3& o, const Vec3& d, int view) {
+cv::Vec3f shadeHit(const Context& ctx, const Hit& hit, const std::vector<int>& cand,
+                   const std::vector<int>& mcand, const Vec3& d, int view) {
   const World& w = ctx.w;
-  const Hit hit = trace(w, cand, o, d, true);
   if (hit.t == kInf) return skyColour(w, d, static_cast<float>(ctx.pixel_angle));
   if (!hit.ground) return shadeSolid(ctx, hit, d);
   const double dist = hit.t * d.norm();
@@ -229,6 +231,11 @@ cv::Vec3f shade(const Context& ctx, const std::vector<int>& cand, const std::vec
   return applyHaze(ctx, c, dist);
 }
 
+cv::Vec3f shade(const Context& ctx, const std::vector<int>& cand, const std::vector<int>& mcand,
+                const Vec3& o, const Vec3& d, int view) {
+  return shadeHit(ctx, trace(ctx.w, cand, o, d, true), cand, mcand, d, view);
+}
+
 }  // namespace
 
 RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose& pose, int frame,
@@ -238,7 +245,11 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
   const int ss = std::max(1, options.supersample);
   const Bins bins = binSolids(w, k, pose, false);
   const Bins mirror_bins = binSolids(w, k, pose, true);
-  Context ctx{w, 1.0 / (k.fx * ss), cv::Vec3f(205, 200, 195)};
+  // Quincunx (ss = 2): a pixel averages its centre (weight 1/2) and its four
+  // corners (1/8 each), corners shared with the neighbours: 2 rays per pixel
+  // and view for an anti-aliasing filter about as wide as 2x2 supersampling.
+  const bool quincunx = ss == 2;
+  Context ctx{w, quincunx ? 0.7 / k.fx : 1.0 / (k.fx * ss), cv::Vec3f(205, 200, 195)};
 
   RenderedFrame out;
   cv::Mat3f colour[2] = {cv::Mat3f(H, W), cv::Mat3f(H, W)};
@@ -247,16 +258,39 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
   out.trap_mask.create(H, W, CV_8U);
   out.unoccluded_px.assign(w.solids.size(), 0);
   std::mutex merge;
+  // Occlusion levels are only reported for labelled obstacles.
+  std::vector<char> occlusion_needed(w.solids.size());
+  for (size_t i = 0; i < w.solids.size(); ++i)
+    occlusion_needed[i] = !w.solids[i].type.empty() && w.solids[i].type != "DontCare";
   const Vec3 centres[2] = {pose.centre, pose.rightCentre(k.baseline_m)};
+  auto ray = [&](double su, double sv) {
+    return Vec3(pose.right * ((su - k.cx) / k.fx) + pose.down * ((sv - k.cy) / k.fy) + pose.forward);
+  };
+  // Colour of the sample at image point (su, sv); the tile of the nearest
+  // pixel lists every solid that can appear there (bins have a 2 px margin).
+  auto sample = [&](int view, double su, double sv) {
+    const int pu = std::clamp(static_cast<int>(std::lround(su)), 0, W - 1);
+    const int pv = std::clamp(static_cast<int>(std::lround(sv)), 0, H - 1);
+    return shade(ctx, bins.at(pu, pv), mirror_bins.at(pu, pv), centres[view], ray(su, sv), view);
+  };
+  auto cornerRow = [&](int view, int cv_row, std::vector<cv::Vec3f>& row) {
+    row.resize(W + 1);
+    for (int cu = 0; cu <= W; ++cu) row[cu] = sample(view, cu - 0.5, cv_row - 0.5);
+  };
 
   auto rows = [&](const cv::Range& range) {
     std::vector<int> unoccluded(w.solids.size(), 0);
+    std::vector<cv::Vec3f> top[2], bottom[2];
+    if (quincunx)
+      for (int view = 0; view < 2; ++view) cornerRow(view, range.start, top[view]);
     for (int v = range.start; v < range.end; ++v) {
+      if (quincunx)
+        for (int view = 0; view < 2; ++view) cornerRow(view, v + 1, bottom[view]);
       for (int u = 0; u < W; ++u) {
         const std::vector<int>& cand = bins.at(u, v);
         const std::vector<int>& mcand = mirror_bins.at(u, v);
         // Ground truth along the pixel-centre ray of the left view.
-        const Vec3 d = pose.right * ((u - k.cx) / k.fx) + pose.down * ((v - k.cy) / k.fy) + pose.forward;
+        const Vec3 d = ray(u, v);
         const Hit hit = trace(w, cand, pose.centre, d, true);
         bool trap = false;
         if (hit.t == kInf) {
@@ -275,24 +309,32 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
             trap = w.solids[hit.solid].parts[hit.part].trap;
         }
         out.trap_mask.at<uchar>(v, u) = trap ? 255 : 0;
+        const Vec3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
         for (const int idx : cand) {
+          if (!occlusion_needed[idx]) continue;
           Hit alone;
-          traceSolid(w, idx, pose.centre, d, alone);
+          traceSolid(w, idx, pose.centre, d, inv_d, alone);
           if (alone.solid == idx) ++unoccluded[idx];
         }
-        // Colour: ss x ss samples per pixel in each view.
         for (int view = 0; view < 2; ++view) {
-          cv::Vec3f sum(0, 0, 0);
-          for (int sy = 0; sy < ss; ++sy) {
-            for (int sx = 0; sx < ss; ++sx) {
-              const double su = u + (sx + 0.5) / ss - 0.5, sv = v + (sy + 0.5) / ss - 0.5;
-              const Vec3 ds = pose.right * ((su - k.cx) / k.fx) + pose.down * ((sv - k.cy) / k.fy) + pose.forward;
-              sum += shade(ctx, cand, mcand, centres[view], ds, view);
-            }
+          cv::Vec3f c;
+          if (quincunx) {
+            const cv::Vec3f centre = view == 0 ? shadeHit(ctx, hit, cand, mcand, d, 0) : sample(1, u, v);
+            c = 0.5f * centre + 0.125f * (top[view][u] + top[view][u + 1] + bottom[view][u] + bottom[view][u + 1]);
+          } else if (ss == 1) {
+            c = view == 0 ? shadeHit(ctx, hit, cand, mcand, d, 0) : sample(1, u, v);
+          } else {
+            c = cv::Vec3f(0, 0, 0);
+            for (int sy = 0; sy < ss; ++sy)
+              for (int sx = 0; sx < ss; ++sx)
+                c += sample(view, u + (sx + 0.5) / ss - 0.5, v + (sy + 0.5) / ss - 0.5);
+            c *= 1.0f / (ss * ss);
           }
-          colour[view](v, u) = sum * (1.0f / (ss * ss));
+          colour[view](v, u) = c;
         }
       }
+      if (quincunx)
+        for (int view = 0; view < 2; ++view) std::swap(top[view], bottom[view]);
     }
     std::lock_guard<std::mutex> lock(merge);
     for (size_t i = 0; i < unoccluded.size(); ++i) out.unoccluded_px[i] += unoccluded[i];
@@ -300,7 +342,7 @@ RenderedFrame renderFrame(const World& w, const CameraRig& rig, const CameraPose
   if (options.threads == 1)
     rows(cv::Range(0, H));
   else
-    cv::parallel_for_(cv::Range(0, H), rows, std::max(1, H / 4));
+    cv::parallel_for_(cv::Range(0, H), rows, std::max(1, std::min(16, H / 8)));
 
   // Sensor: per-camera Gaussian noise, right camera gain/offset, 8-bit clipping.
   for (int view = 0; view < 2; ++view) {

@@ -18,7 +18,9 @@
 namespace nerv::synth {
 
 struct RenderOptions {
-  int supersample = 2;  // samples per pixel along each axis (anti-aliasing)
+  // Anti-aliasing: 1 = pixel centre only, 2 = quincunx (centre + shared corners,
+  // 2 rays per pixel), k >= 3 = k x k grid (slow reference).
+  int supersample = 2;
   int threads = 0;      // 0 = OpenCV's thread pool, 1 = the calling thread only
 };
 

@@ -3,13 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <limits>
 
 #include "config.hpp"
 
 namespace nerv::synth {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Reads a key only when present. (Keeps defaults robust against ConfigSection
 // versions that treat an absent key as an empty value.)

@@ -44,6 +44,14 @@ void World::setTime(double t_s) {
     s.base = s.base0 + heading * (s.speed_mps * t_s);
     if (s.speed_mps != 0) s.base.y() = groundHeight(s.base.x(), s.base.z()) + (s.base0.y() -
                                         groundHeight(s.base0.x(), s.base0.z()));
+    s.world_lo = Vec3::Constant(1e30);
+    s.world_hi = Vec3::Constant(-1e30);
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 p = s.base + s.R * Vec3(c & 1 ? s.hi.x() : s.lo.x(), c & 2 ? s.hi.y() : s.lo.y(),
+                                         c & 4 ? s.hi.z() : s.lo.z());
+      s.world_lo = s.world_lo.cwiseMin(p);
+      s.world_hi = s.world_hi.cwiseMax(p);
+    }
   }
 }
 

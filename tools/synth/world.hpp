@@ -36,6 +36,7 @@ struct Solid {
   // Pose at the current time (World::setTime).
   Vec3 base = Vec3::Zero();
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  // columns: local x, y, z in world
+  Vec3 world_lo = Vec3::Zero(), world_hi = Vec3::Zero();  // world bounding box (cheap ray rejection)
 
   void computeBounds();
   Vec3 toLocal(const Vec3& p_world) const { return R.transpose() * (p_world - base); }

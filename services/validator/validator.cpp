@@ -1,0 +1,117 @@
+#include "validator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <unordered_map>
+
+namespace nerv::validator {
+namespace {
+
+std::string percent(float fraction) {
+  return std::to_string(static_cast<int>(std::lround(fraction * 100.0f))) + "%";
+}
+
+std::string metres(float value) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.2f m", value);
+  return buf;
+}
+
+bool finiteStats(const NormalStats& s) {
+  return std::isfinite(s.density) && std::isfinite(s.ground_fraction) &&
+         std::isfinite(s.object_fraction) && std::isfinite(s.error_fraction) &&
+         s.num_normals >= 0 && s.num_samples >= 0;
+}
+
+Verdict unvalidated(int roi_id, const Params& p, std::string reason) {
+  Verdict v;
+  v.roi_id = roi_id;
+  v.label = "unvalidated";
+  v.score = 0.0f;
+  v.kept = p.keep_unvalidated;
+  v.reason = "unvalidated: " + std::move(reason);
+  return v;
+}
+
+Verdict rejected(int roi_id, const char* label, float score, std::string reason) {
+  Verdict v;
+  v.roi_id = roi_id;
+  v.label = label;
+  v.score = std::clamp(score, 0.0f, 1.0f);
+  v.kept = false;
+  v.reason = std::move(reason);
+  return v;
+}
+
+}  // namespace
+
+Params readParams(ConfigSection& s) {
+  Params p;
+  s.get("min_object_fraction", p.min_object_fraction, 0.0, 1.0);
+  s.get("max_ground_fraction", p.max_ground_fraction, 0.0, 1.0);
+  s.get("max_error_fraction", p.max_error_fraction, 0.0, 1.0);
+  s.get("min_normals", p.min_normals, 1, 1000000);
+  s.get("min_error_density", p.min_error_density, 0.0, 1.0);
+  s.get("keep_unvalidated", p.keep_unvalidated);
+  s.get("min_height_m", p.min_height_m, 0.0, 100.0);
+  s.get("max_height_m", p.max_height_m, 0.0, 100.0);
+  s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
+  if (p.min_height_m >= p.max_height_m)
+    throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
+  return p;
+}
+
+Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p) {
+  const int id = h.id;
+  if (stats == nullptr) return unvalidated(id, p, "no normals");
+  const NormalStats& s = *stats;
+  if (!finiteStats(s)) return unvalidated(id, p, "invalid normal statistics");
+  if (s.num_normals == 0) return unvalidated(id, p, "no normals");
+  if (s.num_normals < p.min_normals)
+    return unvalidated(id, p, "only " + std::to_string(s.num_normals) + " normals (< " +
+                                  std::to_string(p.min_normals) + ")");
+
+  // Metric size sanity (0 = unknown, not checked).
+  if (h.height_m > 0 && h.height_m < p.min_height_m)
+    return rejected(id, "error", 1.0f, "height " + metres(h.height_m) + " below " + metres(p.min_height_m));
+  if (h.height_m > p.max_height_m)
+    return rejected(id, "error", 1.0f, "height " + metres(h.height_m) + " above " + metres(p.max_height_m));
+  if (h.width_m > p.max_width_m)
+    return rejected(id, "error", 1.0f, "width " + metres(h.width_m) + " above " + metres(p.max_width_m));
+
+  if (s.ground_fraction > p.max_ground_fraction)
+    return rejected(id, "ground", s.ground_fraction, "ground normals " + percent(s.ground_fraction));
+  if (s.error_fraction > p.max_error_fraction && s.density >= p.min_error_density)
+    return rejected(id, "error", s.error_fraction,
+                    "error-like normals " + percent(s.error_fraction) +
+                        ", no horizontal component (density " + percent(s.density) + ")");
+  if (s.object_fraction >= p.min_object_fraction) {
+    Verdict v;
+    v.roi_id = id;
+    v.label = "object";
+    v.score = std::clamp(s.object_fraction, 0.0f, 1.0f);
+    v.kept = true;
+    return v;
+  }
+  return unvalidated(id, p, "mixed normals: object " + percent(s.object_fraction) + " (< " +
+                                percent(p.min_object_fraction) + "), ground " +
+                                percent(s.ground_fraction) + ", error-like " + percent(s.error_fraction));
+}
+
+std::vector<Verdict> validate(const std::vector<Hypothesis>& hypotheses,
+                              const std::vector<NormalStats>& stats, const Params& p) {
+  std::unordered_map<int, const NormalStats*> by_id;
+  by_id.reserve(stats.size());
+  for (const NormalStats& s : stats) by_id.emplace(s.roi_id, &s);  // first one wins on duplicates
+  std::vector<Verdict> out;
+  out.reserve(hypotheses.size());
+  for (const Hypothesis& h : hypotheses) {
+    const auto it = by_id.find(h.id);
+    out.push_back(classify(h, it == by_id.end() ? nullptr : it->second, p));
+  }
+  return out;
+}
+
+}  // namespace nerv::validator
