@@ -257,7 +257,11 @@ TEST(RenderOverlay, FrameRangeSelectsSeqs) {
 TEST(RenderOverlay, RemovalCodes) {
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "ground", "ground normals 78%")), "GND 78%");
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "error", "error normals 61.5% facing")), "ERR 61.5%");
-  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "unvalidated", "no normals")), "UNV");
+  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "unvalidated", "unvalidated: no normals")), "UNV none");
+  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "unvalidated", "unvalidated: only 3 normals (< 5)")), "UNV few");
+  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "error", "height 6.05 m above 4.50 m")), "ERR tall");
+  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "error", "width 9.00 m above 6.00 m")), "ERR wide");
+  EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "unvalidated", "")), "UNV");
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "weird", "")), "WEI");
 }
 

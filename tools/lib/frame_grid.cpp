@@ -104,7 +104,8 @@ void drawInfo(cv::Mat& panel, const LogFrame& f) {
                                 (f.detections_log_utime - f.detections->header.utime) / 1000.0), white});
   lines.push_back({"", white});
   lines.push_back({"boxes: kept detection (distance, class)", kKeptColor});
-  lines.push_back({"       removed hypothesis: GND ground, ERR error, UNV unvalidated", kRemovedColor});
+  lines.push_back({"       removed hypothesis: GND ground, ERR error, UNV unvalidated;", kRemovedColor});
+  lines.push_back({"       tall/low/wide: size limit, none/few/mix: normal evidence, NN%: share", kRemovedColor});
   lines.push_back({"       ground truth (DontCare grey)", kLabelColor});
   lines.push_back({"ground model / horizon row", kGroundColor});
   int y = 24;

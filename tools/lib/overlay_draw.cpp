@@ -37,7 +37,16 @@ std::string removalCode(const detection_t& d) {
     for (char c : d.label.substr(0, 3)) code += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     if (code.empty()) code = "?";
   }
-  // The first "NN%" of the reason, e.g. "ground normals 78%".
+  // What the validator's reason says, in a word: size limits and missing
+  // evidence by name, normal fractions by their first "NN%".
+  const std::string& r = d.reason;
+  auto has = [&](const char* w) { return r.find(w) != std::string::npos; };
+  if (has("height") && has("above")) return code + " tall";
+  if (has("height") && has("below")) return code + " low";
+  if (has("width") && has("above")) return code + " wide";
+  if (has("no normals")) return code + " none";
+  if (has("only ") && has("normals")) return code + " few";
+  if (has("mixed")) return code + " mix";
   const size_t pct = d.reason.find('%');
   if (pct != std::string::npos) {
     size_t start = pct;

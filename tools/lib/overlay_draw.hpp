@@ -17,7 +17,9 @@
 namespace nerv::viz {
 
 // Short code of why a hypothesis was removed: "GND", "ERR", "UNV" (from its
-// label) followed by the first percentage of its reason, e.g. "GND 78%".
+// label) followed by a word from its reason: "tall" / "low" / "wide" (size
+// limits), "none" / "few" / "mix" (normal evidence), else the reason's first
+// percentage, e.g. "GND 78%".
 std::string removalCode(const detection_t& d);
 
 // Text on a dark box, so it reads on any background. `origin` is the
