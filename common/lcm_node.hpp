@@ -124,7 +124,14 @@ void Node::subscribe(const std::string& base_channel, std::function<void(const T
   sub->node = this;
   sub->on_message = [this, handler](const lcm::ReceiveBuffer* rbuf, const std::string& ch) {
     T msg;
-    if (msg.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+    // Generated decoders return < 0 on a wrong fingerprint or short buffer, but
+    // a corrupt array length makes them throw (std::vector): both are rejections.
+    bool decoded = false;
+    try {
+      decoded = msg.decode(rbuf->data, 0, rbuf->data_size) >= 0;
+    } catch (const std::exception&) {
+    }
+    if (!decoded) {
       error("decode_failed", "message on " + ch + " does not decode as " + T::getTypeName());
       return;
     }

@@ -4,6 +4,7 @@
 // Exit 0 when every expectation holds; prints what it saw either way.
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -86,6 +87,24 @@ int main(int argc, char** argv) {
   settle();
   lcm.publish("DISPARITY", garbage.data(), garbage.size());
   settle();
+  // 1b. the right type with a corrupt array length (makes the generated decoder throw)
+  {
+    stereo_frame_t c = frame(99);
+    c.left.encoding = "png";
+    c.left.data = {0xAB, 0xCD, 0xEF};
+    c.left.size = 3;
+    std::vector<uint8_t> bytes(c.getEncodedSize());
+    c.encode(bytes.data(), 0, bytes.size());
+    const uint8_t marker[] = {0, 0, 0, 3, 0xAB, 0xCD, 0xEF};
+    auto at = std::search(bytes.begin(), bytes.end(), std::begin(marker), std::end(marker));
+    if (at == bytes.end()) {
+      std::fprintf(stderr, "inject: cannot find the array length to corrupt\n");
+      return 2;
+    }
+    std::fill(at, at + 4, 0xFF);  // size = -1
+    lcm.publish("STEREO_FRAME", bytes.data(), bytes.size());
+    settle();
+  }
   // 2. size field disagrees with the data
   stereo_frame_t f = frame(100);
   f.left.size += 7;
@@ -117,7 +136,7 @@ int main(int argc, char** argv) {
 
   auto expectations = [&] {
     auto c = [&](const char* svc, const char* name) { return l.counters[svc][name]; };
-    return c("stereo_matcher", "decode_failed") >= 1 && c("stereo_matcher", "bad_size") >= 1 &&
+    return c("stereo_matcher", "decode_failed") >= 2 && c("stereo_matcher", "bad_size") >= 1 &&
            c("stereo_matcher", "size_mismatch") >= 1 && c("stereo_matcher", "bad_calibration") >= 1 &&
            c("stixel", "decode_failed") >= 1 && c("stixel", "size_mismatch") >= 1 &&
            l.outputs["DISPARITY"] >= 1 && l.outputs["STIXELS"] >= 1;

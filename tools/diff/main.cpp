@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "json_writer.hpp"
+#include "log_decode.hpp"
 #include "message_json.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
@@ -33,7 +34,7 @@ using Run = std::map<std::string, std::map<int64_t, std::string>>;
 template <class T>
 bool canonical(const lcm::LogEvent& e, int64_t& seq, std::string& json) {
   T msg;
-  if (msg.decode(e.data, 0, e.datalen) < 0) return false;
+  if (!decodeEvent(e, msg)) return false;
   msg.processing_ms = 0;  // timing differs between runs by nature
   std::vector<uint8_t> buf(msg.getEncodedSize());
   msg.encode(buf.data(), 0, buf.size());

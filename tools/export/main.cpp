@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "json_writer.hpp"
+#include "log_decode.hpp"
 #include "log_summary.hpp"
 #include "message_convert.hpp"
 #include "message_json.hpp"
@@ -110,7 +111,7 @@ int exportDisparity(const std::string& path, const std::string& dir) {
   cv::Mat disparity, fixed;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     disparity_t msg;
-    if (e->datalen < 8 || msg.decode(e->data, 0, e->datalen) < 0) continue;
+    if (!decodeEvent(*e, msg)) continue;
     if (std::string why = decodeDisparity(msg, disparity); !why.empty()) {
       std::fprintf(stderr, "nerv_export: seq %lld: %s\n", (long long)msg.header.seq, why.c_str());
       continue;

@@ -5,6 +5,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include <cstdint>
+#include <exception>
 
 namespace nerv {
 
@@ -14,7 +15,12 @@ bool decodeEvent(const lcm::LogEvent& e, T& msg) {
   const auto* b = static_cast<const uint8_t*>(e.data);
   uint64_t h = 0;
   for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  return static_cast<int64_t>(h) == T::getHash() && msg.decode(e.data, 0, e.datalen) >= 0;
+  if (static_cast<int64_t>(h) != T::getHash()) return false;
+  try {
+    return msg.decode(e.data, 0, e.datalen) >= 0;
+  } catch (const std::exception&) {  // a corrupt array length makes the decoder throw
+    return false;
+  }
 }
 
 }  // namespace nerv

@@ -282,7 +282,11 @@ template <class T>
 bool tryType(const void* data, int size, JsonWriter& json, std::string& name) {
   if (fingerprint(data, size) != T::getHash()) return false;
   T msg;
-  if (msg.decode(data, 0, size) < 0) return true;  // right type, broken payload
+  try {
+    if (msg.decode(data, 0, size) < 0) return true;  // right type, broken payload
+  } catch (const std::exception&) {
+    return true;  // a corrupt array length makes the decoder throw
+  }
   write(json, msg);
   name = std::string("nerv.") + T::getTypeName();
   return true;

@@ -58,9 +58,16 @@ struct Options {
 struct HealthBoard {
   std::map<std::string, health_t> last;  // "service/instance" -> report
   std::map<std::string, Clock::time_point> seen;
-  void onHealth(const lcm::ReceiveBuffer*, const std::string&, const health_t* h) {
-    const std::string key = h->service + "/" + h->instance;
-    last[key] = *h;
+  int64_t broken = 0;
+  void onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    health_t h;
+    try {  // a corrupt array length makes the generated decoder throw
+      if (h.decode(rbuf->data, 0, rbuf->data_size) < 0) return void(++broken);
+    } catch (const std::exception&) {
+      return void(++broken);
+    }
+    const std::string key = h.service + "/" + h.instance;
+    last[key] = h;
     seen[key] = Clock::now();
   }
   void print(FILE* out) const {
