@@ -492,11 +492,16 @@ int main(int argc, char** argv) {
                         hyps[best].y1, hyps[best].x2, hyps[best].y2, st.hypotheses[best].z_m, vs[best].label.c_str());
           std::printf("\n");
         }
-        for (size_t k = 0; k < hyps.size(); ++k)
-          if (out_all[k] == Outcome::FP)
-            std::printf("  fp   hyp %d box %4.0f,%3.0f-%4.0f,%3.0f z %.1f h %.2f w %.2f %s%s\n", int(k), hyps[k].x1,
-                        hyps[k].y1, hyps[k].x2, hyps[k].y2, st.hypotheses[k].z_m, st.hypotheses[k].height_m,
-                        st.hypotheses[k].width_m, vs[k].label.c_str(), vs[k].kept ? "" : " (removed)");
+        for (size_t k = 0; k < hyps.size(); ++k) {
+          if (out_all[k] == Outcome::Ignored) continue;
+          const NormalStats& ns = sn.rois[k];
+          std::printf("  %s hyp %d box %4.0f,%3.0f-%4.0f,%3.0f z %.1f h %.2f w %.2f | n %d dens %.2f g %.2f o %.2f e %.2f "
+                      "elev %.0f tilt %.0f | %s%s\n", out_all[k] == Outcome::TP ? "tp  " : "fp  ", int(k), hyps[k].x1,
+                      hyps[k].y1, hyps[k].x2, hyps[k].y2, st.hypotheses[k].z_m, st.hypotheses[k].height_m,
+                      st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
+                      ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
+                      vs[k].kept ? "" : " (removed)");
+        }
       }
 
       if (!o.overlay.empty()) {

@@ -20,7 +20,7 @@ namespace nerv::stixel {
 struct BoxRefinementParams {
   float depth_tolerance_m = 1.0f;   // a pixel belongs to a stixel within this depth [m] (>= 1 px)
   float ground_tolerance_m = 0.15f; // pixels this close to the road are road, not object [m]
-  float min_column_fill = 0.4f;     // an edge column needs this share of the stixel's rows
+  float min_column_fill = 0.25f;    // an edge column needs this share of the stixel's rows
   float min_row_fill = 0.3f;        // the top row needs this share of the box width
 };
 

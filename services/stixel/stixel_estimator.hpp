@@ -37,7 +37,7 @@ struct Params {
   float min_single_stixel_height_m = 0.0f; // a lone stixel at least this tall is kept as a hypothesis; 0 = never (measured: more FPs than posts found)
   bool refine_boxes = true;              // cut box edges at pixel level (box_refinement.hpp)
   float refine_depth_tolerance_m = 1.0f; // refinement: pixels within this depth of the edge stixel are object
-  float refine_min_column_fill = 0.4f;   // refinement: an edge column needs this share of the stixel's rows
+  float refine_min_column_fill = 0.25f;  // refinement: an edge column needs this share of the stixel's rows
   float refine_min_row_fill = 0.3f;      // refinement: the top row needs this share of the box width
 };
 
