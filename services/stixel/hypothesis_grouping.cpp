@@ -21,7 +21,7 @@ bool joins(const std::vector<const Stixel*>& group, const Stixel& s, const Stere
 }  // namespace
 
 std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
-                                     const GroupingParams& p) {
+                                     const GroupingParams& p, const GroupingInput& input) {
   std::vector<std::vector<const Stixel*>> groups;
   for (const Stixel& s : stixels) {
     const size_t n = groups.size();
@@ -40,7 +40,13 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   std::vector<Hypothesis> out;
   std::vector<float> disp;
   for (const auto& g : groups) {
-    if (static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) continue;
+    if (static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) {
+      // A lone tall stixel is a post or a sign, not noise.
+      const Stixel& s = *g.front();
+      const bool tall_single = g.size() == 1 && p.min_single_stixel_height_m > 0 &&
+                               (s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy >= p.min_single_stixel_height_m;
+      if (!tall_single) continue;
+    }
     int x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
     int y0 = g.front()->top_row, y1 = g.front()->bottom_row;
     disp.clear();
@@ -50,6 +56,11 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       y0 = std::min(y0, s->top_row);
       y1 = std::max(y1, s->bottom_row);
       disp.push_back(s->disparity);
+    }
+    if (p.refine_boxes && input.disparity && input.ground) {
+      PixelBox box{x0, x1, y0, y1};
+      refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box);
+      x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).
     std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());

@@ -1,8 +1,11 @@
 // Obstacle hypotheses (ROIs): runs of neighbouring stixels at a similar depth.
 #pragma once
 
+#include <opencv2/core.hpp>
+
 #include <vector>
 
+#include "box_refinement.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
 
@@ -14,11 +17,22 @@ struct GroupingParams {
   int min_stixels_per_hypothesis = 2;  // smaller groups are dropped
   float min_obstacle_height_m = 0.25f; // lower groups are dropped
   float max_distance_m = 60.0f;        // farther groups are dropped
+  float min_single_stixel_height_m = 0.0f;  // a lone stixel this tall is a hypothesis; 0 = never
+  bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
+  BoxRefinementParams refinement;
+  int column_width_px = 5;             // stixel strip width (refinement looks one strip outside)
+};
+
+// The disparity and road a frame's stixels came from (for box refinement).
+struct GroupingInput {
+  const cv::Mat* disparity = nullptr;
+  const GroundModel* ground = nullptr;
 };
 
 // stixels sorted by u (as extractStixels returns them). Hypotheses are numbered
 // 0..n-1 from left to right.
+// Without `input` (or with refine_boxes false) boxes are the union of the stixels.
 std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
-                                     const GroupingParams& p);
+                                     const GroupingParams& p, const GroupingInput& input = {});
 
 }  // namespace nerv::stixel

@@ -89,7 +89,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.min_stixels_per_hypothesis = params.min_stixels_per_hypothesis;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
-  result.hypotheses = groupStixels(result.stixels, cam, gp);
+  gp.min_single_stixel_height_m = params.min_single_stixel_height_m;
+  gp.refine_boxes = params.refine_boxes;
+  gp.column_width_px = params.column_width_px;
+  gp.refinement.depth_tolerance_m = params.refine_depth_tolerance_m;
+  gp.refinement.ground_tolerance_m = params.ground_tolerance_m;
+  gp.refinement.min_column_fill = params.refine_min_column_fill;
+  gp.refinement.min_row_fill = params.refine_min_row_fill;
+  result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground});
   return result;
 }
 

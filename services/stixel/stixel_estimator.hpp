@@ -34,6 +34,11 @@ struct Params {
   int freespace_jump_cap_bins = 4;       // larger boundary jumps cost no more (object edges)
   float object_depth_tolerance_m = 1.5f; // height segmentation: pixels within this depth of a stixel belong to it
   float max_stixel_height_m = 10.0f;     // height segmentation looks no higher over the road (poles, trucks)
+  float min_single_stixel_height_m = 0.0f; // a lone stixel at least this tall is kept as a hypothesis; 0 = never (measured: more FPs than posts found)
+  bool refine_boxes = true;              // cut box edges at pixel level (box_refinement.hpp)
+  float refine_depth_tolerance_m = 1.0f; // refinement: pixels within this depth of the edge stixel are object
+  float refine_min_column_fill = 0.25f;  // refinement: an edge column needs this share of the stixel's rows
+  float refine_min_row_fill = 0.3f;      // refinement: the top row needs this share of the box width
 };
 
 // Reads the `stixel:` section of a pipeline config into Params (ConfigError on bad keys).

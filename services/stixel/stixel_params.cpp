@@ -25,6 +25,11 @@ Params readParams(ConfigSection& c) {
   c.get("freespace_jump_cap_bins", p.freespace_jump_cap_bins, 1, 1000);
   c.get("object_depth_tolerance_m", p.object_depth_tolerance_m, 0.01, 100.0);
   c.get("max_stixel_height_m", p.max_stixel_height_m, 0.1, 100.0);
+  c.get("min_single_stixel_height_m", p.min_single_stixel_height_m, 0.0, 100.0);
+  c.get("refine_boxes", p.refine_boxes);
+  c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);
+  c.get("refine_min_column_fill", p.refine_min_column_fill, 0.0, 1.0);
+  c.get("refine_min_row_fill", p.refine_min_row_fill, 0.0, 1.0);
   if (p.min_camera_height_m >= p.max_camera_height_m)
     throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
   if (p.ground_tolerance_m >= p.min_camera_height_m)

@@ -58,6 +58,8 @@ Params readParams(ConfigSection& s) {
   s.get("min_height_m", p.min_height_m, 0.0, 100.0);
   s.get("max_height_m", p.max_height_m, 0.0, 100.0);
   s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
+  s.get("max_surface_tilt_deg", p.max_surface_tilt_deg, 0.0, 90.0);
+  s.get("min_surface_normals", p.min_surface_normals, 1, 1000000);
   if (p.min_height_m >= p.max_height_m)
     throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
   return p;
@@ -87,6 +89,13 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
     return rejected(id, "error", s.error_fraction,
                     "error-like normals " + percent(s.error_fraction) +
                         ", no horizontal component (density " + percent(s.density) + ")");
+  if (s.object_fraction < p.min_object_fraction && s.num_normals >= p.min_surface_normals &&
+      std::isfinite(s.tilt_from_ground_deg) && s.tilt_from_ground_deg < p.max_surface_tilt_deg) {
+    char buf[128];
+    std::snprintf(buf, sizeof(buf), "surface tilted %.0f deg from the road, object normals %s (< %s)",
+                  s.tilt_from_ground_deg, percent(s.object_fraction).c_str(), percent(p.min_object_fraction).c_str());
+    return rejected(id, "ground", 1.0f - s.tilt_from_ground_deg / 90.0f, buf);
+  }
   if (s.object_fraction >= p.min_object_fraction) {
     Verdict v;
     v.roi_id = id;

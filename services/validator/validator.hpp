@@ -19,6 +19,12 @@ struct Params {
   float min_height_m = 0.2f;          // metric height below this (when known, > 0) is implausible -> error
   float max_height_m = 4.5f;          // metric height above this is implausible -> error
   float max_width_m = 12.0f;          // metric width above this is implausible -> error
+  // A surface only tilted from the road (lawn, verge, kerb, ramp): representative
+  // normal within max_surface_tilt_deg of the ground normal while object normals
+  // stay below min_object_fraction, on at least min_surface_normals normals.
+  // Chosen on kitti_raw_0926_seq (docs/validator.md); 0 disables the rule.
+  float max_surface_tilt_deg = 15.0f;
+  int min_surface_normals = 20;
 };
 
 Params readParams(ConfigSection& section);

@@ -30,6 +30,7 @@ NormalStats stats(int id, int normals, float ground, float object, float error, 
   s.ground_fraction = ground;
   s.object_fraction = object;
   s.error_fraction = error;
+  s.tilt_from_ground_deg = 90.0f;  // an upright representative normal unless a test says otherwise
   return s;
 }
 
@@ -67,6 +68,35 @@ TEST(validatorClassify, SparseErrorLikeNormalsAreNotEnoughForError) {
   EXPECT_EQ(v.label, "unvalidated");
   EXPECT_TRUE(v.kept);
   EXPECT_EQ(v.reason, "unvalidated: mixed normals: object 10% (< 30%), ground 0%, error-like 80%");
+}
+
+TEST(validatorClassify, SurfaceTiltedLikeTheRoadIsGround) {
+  // A raised lawn: few object normals, representative normal 6 deg from the road's.
+  NormalStats s = stats(4, 120, 0.45f, 0.16f, 0.0f);
+  s.tilt_from_ground_deg = 6.0f;
+  const Verdict v = classify(hyp(4, 0.6f), &s, Params{});
+  EXPECT_EQ(v.label, "ground");
+  EXPECT_FALSE(v.kept);
+  EXPECT_NEAR(v.score, 1.0f - 6.0f / 90.0f, 1e-6);
+  EXPECT_EQ(v.reason, "surface tilted 6 deg from the road, object normals 16% (< 30%)");
+}
+
+TEST(validatorClassify, TiltedSurfaceRuleNeedsEvidenceAndFewObjectNormals) {
+  NormalStats few = stats(5, 12, 0.3f, 0.1f, 0.0f);  // < min_surface_normals (20): a far car
+  few.tilt_from_ground_deg = 4.0f;
+  EXPECT_EQ(classify(hyp(5), &few, Params{}).label, "unvalidated");
+  NormalStats objecty = stats(6, 200, 0.2f, 0.35f, 0.0f);  // enough object normals: kept
+  objecty.tilt_from_ground_deg = 10.0f;
+  EXPECT_EQ(classify(hyp(6), &objecty, Params{}).label, "object");
+  NormalStats steep = stats(7, 200, 0.2f, 0.2f, 0.0f);  // tilted 40 deg: not a road-like surface
+  steep.tilt_from_ground_deg = 40.0f;
+  EXPECT_EQ(classify(hyp(7), &steep, Params{}).label, "unvalidated");
+  Params off;
+  off.max_surface_tilt_deg = 0.0f;  // rule disabled
+  NormalStats lawn = stats(8, 200, 0.4f, 0.1f, 0.0f);
+  lawn.tilt_from_ground_deg = 5.0f;
+  EXPECT_EQ(classify(hyp(8), &lawn, off).label, "unvalidated");
+  EXPECT_EQ(classify(hyp(8), &lawn, Params{}).label, "ground");
 }
 
 TEST(validatorClassify, NoStatsIsUnvalidatedAndKeptByDefault) {
@@ -134,7 +164,7 @@ TEST(validatorParams, ReadsSectionAndRejectsBadKeys) {
   YAML::Node n = YAML::Load(
       "min_object_fraction: 0.4\nmax_ground_fraction: 0.6\nmax_error_fraction: 0.6\n"
       "min_normals: 12\nmin_error_density: 0.5\nkeep_unvalidated: false\nmin_height_m: 0.2\n"
-      "max_height_m: 3.5\nmax_width_m: 12\n");
+      "max_height_m: 3.5\nmax_width_m: 12\nmax_surface_tilt_deg: 20\nmin_surface_normals: 30\n");
   ConfigSection s(n, "validator");
   const Params p = readParams(s);
   s.finish();
@@ -142,6 +172,8 @@ TEST(validatorParams, ReadsSectionAndRejectsBadKeys) {
   EXPECT_FALSE(p.keep_unvalidated);
   EXPECT_EQ(p.min_normals, 12);
   EXPECT_FLOAT_EQ(p.max_height_m, 3.5f);
+  EXPECT_FLOAT_EQ(p.max_surface_tilt_deg, 20.0f);
+  EXPECT_EQ(p.min_surface_normals, 30);
 
   YAML::Node bad = YAML::Clone(n);
   bad["max_error_fraction"] = 1.5;

@@ -1,0 +1,600 @@
+// Offline detection quality: the reference table of the NERV method, computed
+// in-process on a dataset folder, for fast tuning.
+//
+//   build/bin/bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]
+//       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
+//       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--quiet]
+//
+// Per frame: SGBM disparity (the stereo_matcher's library and defaults, cached
+// as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
+// stixel::estimateStixels (with the previous frame's SNV pose as prior, as the
+// stixel service does) -> snv::SnvExtrinsicEstimator::process ->
+// validator::validate. Then:
+//   - the table of tools/nerv run / nerv_eval_detections: objects, TP, FP, FN,
+//     precision, recall, F1 for every hypothesis (stixel only) and for the kept
+//     ones (stixel + SNV), same matcher (tools/lib/detection_eval.hpp);
+//   - recall per class; per-object coverage over the frames (synthetic labels
+//     with 3D positions: objects are followed from frame to frame);
+//   - false positives and lost true positives by verdict and reason;
+//   - hypotheses lying mostly (> 50 %) inside DIR/trap_mask and how many survive;
+//   - ground-model and SNV pose against DIR/extrinsics.txt (or --extrinsics);
+//   - ms per frame of each stage.
+// --visible counts only labels with occlusion < 2 and truncation < 0.5 (others
+// are ignored: neither hit nor miss). --set overrides a config key, e.g.
+// --set validator.max_error_fraction=0.5 (repeatable).
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "dataset.hpp"
+#include "detection_eval.hpp"
+#include "kitti_labels.hpp"
+#include "snv_extrinsic.hpp"
+#include "stereo_matcher.hpp"
+#include "stixel_estimator.hpp"
+#include "validator.hpp"
+
+using namespace nerv;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Options {
+  std::string data, labels, config, cache = "/tmp/nerv_bench_cache", extrinsics, overlay;
+  std::vector<std::pair<std::string, std::string>> sets;
+  float max_distance_m = 1e9f;
+  int frames = 0;
+  bool visible = false, per_frame = false, quiet = false;
+};
+
+[[noreturn]] void usage(const std::string& why) {
+  std::fprintf(stderr, "bench_detection: %s\n", why.c_str());
+  std::fprintf(stderr,
+               "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
+               "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible]\n"
+               "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--quiet]\n");
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage("flag " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--data") o.data = value();
+    else if (a == "--labels") o.labels = value();
+    else if (a == "--max-distance") o.max_distance_m = std::stof(value());
+    else if (a == "--frames") o.frames = std::stoi(value());
+    else if (a == "--config") o.config = value();
+    else if (a == "--cache") o.cache = value();
+    else if (a == "--extrinsics") o.extrinsics = value();
+    else if (a == "--overlay") o.overlay = value();
+    else if (a == "--visible") o.visible = true;
+    else if (a == "--per-frame") o.per_frame = true;
+    else if (a == "--quiet") o.quiet = true;
+    else if (a == "--set") {
+      const std::string kv = value();
+      const size_t eq = kv.find('=');
+      if (eq == std::string::npos || kv.find('.') > eq) usage("--set wants section.key=value, got " + kv);
+      o.sets.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else usage("unknown flag '" + a + "'");
+  }
+  if (o.data.empty()) usage("--data DIR is required");
+  if (o.labels.empty() && fs::is_directory(o.data + "/label_2")) o.labels = o.data + "/label_2";
+  if (o.extrinsics.empty() && fs::exists(o.data + "/extrinsics.txt")) o.extrinsics = o.data + "/extrinsics.txt";
+  return o;
+}
+
+struct AllParams {
+  stereo::Params stereo;
+  stixel::Params stixel;
+  float min_prior_confidence = 0.3f;
+  snv::Params snv;
+  validator::Params validator;
+};
+
+AllParams loadParams(const Options& o) {
+  YAML::Node root = o.config.empty() ? YAML::Node(YAML::NodeType::Map) : loadConfigFile(o.config);
+  for (const auto& [path, value] : o.sets) {
+    const size_t dot = path.find('.');
+    root[path.substr(0, dot)][path.substr(dot + 1)] = YAML::Load(value);
+  }
+  AllParams p;
+  ConfigSection top(root, "");
+  for (const char* k : {"lcm_url", "channel_prefix", "limits", "source", "run"}) top.allow(k);
+  {
+    ConfigSection s = top.section("stereo_matcher");
+    p.stereo = stereo::readParams(s);
+    for (const char* k : {"output_encoding", "queue"}) s.allow(k);
+    s.finish();
+  }
+  {
+    ConfigSection s = top.section("stixel");
+    p.stixel = stixel::readParams(s);
+    s.get("min_prior_confidence", p.min_prior_confidence, 0.0, 1.0);
+    s.allow("queue");
+    s.finish();
+  }
+  {
+    ConfigSection s = top.section("snv_extrinsic");
+    p.snv = snv::readParams(s);
+    for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) s.allow(k);
+    s.finish();
+  }
+  {
+    ConfigSection s = top.section("validator");
+    p.validator = validator::readParams(s);
+    for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) s.allow(k);
+    s.finish();
+  }
+  top.finish();
+  return p;
+}
+
+// Disparity of one frame, from the cache when the same pair and matcher
+// settings were computed before. Stored as uint16 PNG of d*16 (SGBM's exact
+// fixed-point value), so the cache is lossless.
+cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
+                    const std::string& cache_dir, double& ms) {
+  std::ostringstream key;
+  key << fs::absolute(f.left_path).string() << '|' << fs::last_write_time(f.left_path).time_since_epoch().count()
+      << '|' << sp.algorithm << sp.num_disparities << '_' << sp.min_disparity << '_' << sp.block_size << '_'
+      << sp.p1 << '_' << sp.p2 << '_' << sp.uniqueness_ratio << '_' << sp.speckle_window_size << '_'
+      << sp.speckle_range << '_' << sp.lr_max_diff;
+  const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
+  ms = 0;
+  if (fs::exists(path)) {
+    cv::Mat fixed = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (!fixed.empty() && fixed.type() == CV_16U) {
+      cv::Mat d;
+      fixed.convertTo(d, CV_32F, 1.0 / 16.0);
+      return d;
+    }
+  }
+  const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_GRAYSCALE);
+  const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_GRAYSCALE);
+  if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
+  cv::Mat d;
+  const auto t0 = std::chrono::steady_clock::now();
+  m.compute(left, right, d);
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  cv::Mat fixed;
+  d.convertTo(fixed, CV_16U, 16.0);
+  fs::create_directories(cache_dir);
+  cv::imwrite(path, fixed);
+  return d;
+}
+
+struct TruePose {
+  float pitch = 0, roll = 0, height = 0;
+};
+
+std::map<long, TruePose> readExtrinsics(const std::string& path) {
+  std::map<long, TruePose> poses;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::string frame;
+    TruePose p;
+    if (line.empty() || line[0] == '#' || !(s >> frame >> p.pitch >> p.roll >> p.height)) continue;
+    try {
+      poses[std::stol(frame)] = p;
+    } catch (...) {
+    }
+  }
+  return poses;
+}
+
+float area(const EvalBox& b) { return std::max(0.f, b.x2 - b.x1) * std::max(0.f, b.y2 - b.y1); }
+float intersection(const EvalBox& a, const EvalBox& b) {
+  const float w = std::min(a.x2, b.x2) - std::max(a.x1, b.x1);
+  const float h = std::min(a.y2, b.y2) - std::max(a.y1, b.y1);
+  return w > 0 && h > 0 ? w * h : 0.f;
+}
+EvalBox boxOf(const KittiLabel& l) { return {l.x1, l.y1, l.x2, l.y2, 0}; }
+EvalBox boxOf(const Hypothesis& h) {
+  return {float(h.box.x), float(h.box.y), float(h.box.x + h.box.w), float(h.box.y + h.box.h), 0};
+}
+
+enum class Outcome { TP, FP, Ignored };
+
+// The matcher of tools/lib/detection_eval.cpp, per detection (the counts are
+// checked against evaluateFrame below). matched_label[i] = label index or -1.
+std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets_in, const std::vector<KittiLabel>& labels,
+                                const EvalParams& p, std::vector<int>& matched_label) {
+  std::vector<int> counted, ignored, dontcare;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const auto& l = labels[i];
+    if (l.type == "DontCare") dontcare.push_back(int(i));
+    else if ((!p.classes.empty() && !p.classes.count(l.type)) || (l.z > 0 && l.z > p.max_distance_m))
+      ignored.push_back(int(i));
+    else
+      counted.push_back(int(i));
+  }
+  std::vector<size_t> order(dets_in.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return dets_in[a].score > dets_in[b].score; });
+  std::vector<Outcome> out(dets_in.size(), Outcome::FP);
+  matched_label.assign(dets_in.size(), -1);
+  std::vector<bool> used(counted.size(), false);
+  for (size_t k : order) {
+    const EvalBox& d = dets_in[k];
+    int best = -1;
+    float best_iou = p.min_iou;
+    for (size_t i = 0; i < counted.size(); ++i) {
+      const float o = iou(d, boxOf(labels[counted[i]]));
+      if (!used[i] && o > best_iou) best_iou = o, best = int(i);
+    }
+    if (best >= 0) {
+      used[best] = true;
+      out[k] = Outcome::TP;
+      matched_label[k] = counted[best];
+      continue;
+    }
+    bool neutral = false;
+    for (int g : ignored) neutral = neutral || iou(d, boxOf(labels[g])) > p.min_iou;
+    for (int g : dontcare)
+      neutral = neutral || (area(d) > 0 && intersection(d, boxOf(labels[g])) / area(d) > p.dontcare_min_overlap);
+    out[k] = neutral ? Outcome::Ignored : Outcome::FP;
+  }
+  return out;
+}
+
+// "error: height 0.12 m below 0.20 m" -> "error: height below"; numbers dropped.
+std::string reasonKind(const Verdict& v) {
+  std::string r = v.reason;
+  if (r.rfind("unvalidated: ", 0) == 0) r = r.substr(13);
+  std::string out;
+  std::istringstream s(r);
+  for (std::string w; s >> w && out.size() < 40;) {
+    if (std::isdigit(static_cast<unsigned char>(w[0])) || w[0] == '(' || w[0] == '<') continue;
+    if (w.back() == ',' || w.back() == ':') w.pop_back();
+    out += (out.empty() ? "" : " ") + w;
+    if (w == "normals" || w == "below" || w == "above") break;
+  }
+  return v.label + (out.empty() ? "" : ": " + out);
+}
+
+// Follows labelled objects across frames (synthetic labels carry 3D size and
+// position): same type and size, nearest base position within a gate.
+struct Track {
+  std::string type;
+  float h, w, l, x, z;
+  int last_frame;
+  int frames = 0, covered = 0, kept_covered = 0;
+  float min_z = 1e9f, max_z = 0;
+};
+
+struct Stat {
+  double sum = 0, max = 0;
+  int n = 0;
+  void add(double v) {
+    sum += v;
+    max = std::max(max, std::abs(v));
+    ++n;
+  }
+  double mean() const { return n ? sum / n : 0; }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    const AllParams P = loadParams(o);
+    Dataset ds = openDataset(o.data);
+    if (o.frames > 0 && static_cast<int>(ds.frames.size()) > o.frames) ds.frames.resize(o.frames);
+    const std::map<long, TruePose> truth = o.extrinsics.empty() ? std::map<long, TruePose>{} : readExtrinsics(o.extrinsics);
+    const bool have_traps = fs::is_directory(o.data + "/trap_mask");
+    if (!o.overlay.empty()) fs::create_directories(o.overlay);
+
+    auto matcher = stereo::StereoMatcher::create(P.stereo);
+    snv::SnvExtrinsicEstimator snv_est(P.snv);
+    stixel::GroundPrior prior;
+
+    EvalParams ep;
+    ep.max_distance_m = o.max_distance_m;
+    EvalCounts all, kept;
+    std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
+    std::map<std::string, int> fp_removed, fp_kept, tp_lost, fp_where;
+    std::map<std::string, int> verdicts;
+    int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
+    std::vector<double> ms_sgbm, ms_stixel, ms_snv, ms_val;
+    Stat ground_h, ground_p, snv_h, snv_p, snv_ih, snv_ip;
+    std::vector<Track> tracks;
+    int num_hyps = 0;
+
+    for (size_t fi = 0; fi < ds.frames.size(); ++fi) {
+      const DatasetFrame& f = ds.frames[fi];
+      double t_sgbm = 0;
+      const cv::Mat disp = disparityOf(f, P.stereo, *matcher, o.cache, t_sgbm);
+      if (t_sgbm > 0) ms_sgbm.push_back(t_sgbm);
+
+      auto t0 = std::chrono::steady_clock::now();
+      const stixel::StixelResult st = stixel::estimateStixels(disp, f.camera, P.stixel, prior);
+      auto t1 = std::chrono::steady_clock::now();
+      const snv::SnvResult sn = snv_est.process(disp, f.camera, st.hypotheses, st.ground);
+      auto t2 = std::chrono::steady_clock::now();
+      const std::vector<Verdict> vs = validator::validate(st.hypotheses, sn.rois, P.validator);
+      auto t3 = std::chrono::steady_clock::now();
+      ms_stixel.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      ms_snv.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+      ms_val.push_back(std::chrono::duration<double, std::milli>(t3 - t2).count());
+      // The stixel service takes the latest EXTRINSICS as its prior.
+      if (sn.pose.valid && sn.pose.confidence >= P.min_prior_confidence)
+        prior = {true, sn.pose.pitch_deg, sn.pose.roll_deg, sn.pose.height_m};
+      ++frames_done;
+      num_hyps += static_cast<int>(st.hypotheses.size());
+      if (!st.ground.valid) ++frames_no_ground;
+      for (const Verdict& v : vs) ++verdicts[v.label + (v.kept ? " (kept)" : " (removed)")];
+
+      long frame_no = -1;
+      try {
+        frame_no = std::stol(f.name);
+      } catch (...) {
+      }
+      if (auto it = truth.find(frame_no); it != truth.end()) {
+        if (st.ground.valid) {
+          ground_h.add(st.ground.height_m - it->second.height);
+          ground_p.add(st.ground.pitch_deg - it->second.pitch);
+        }
+        if (sn.pose.valid) {
+          snv_h.add(sn.pose.height_m - it->second.height);
+          snv_p.add(sn.pose.pitch_deg - it->second.pitch);
+          snv_ih.add(sn.pose.instant_height_m - it->second.height);
+          snv_ip.add(sn.pose.instant_pitch_deg - it->second.pitch);
+        }
+      } else if (truth.empty() && st.ground.valid && !o.quiet && o.per_frame) {
+        std::printf("frame %s ground height %.3f m pitch %.2f deg, snv %.3f m %.2f deg\n", f.name.c_str(),
+                    st.ground.height_m, st.ground.pitch_deg, sn.pose.height_m, sn.pose.pitch_deg);
+      }
+
+      // Trap hypotheses: most of the box inside the trap mask.
+      std::vector<bool> in_trap(st.hypotheses.size(), false);
+      if (have_traps) {
+        const cv::Mat mask = cv::imread(o.data + "/trap_mask/" + f.name + ".png", cv::IMREAD_GRAYSCALE);
+        if (!mask.empty()) {
+          for (size_t i = 0; i < st.hypotheses.size(); ++i) {
+            const Box& b = st.hypotheses[i].box;
+            const cv::Rect r = cv::Rect(b.x, b.y, b.w, b.h) & cv::Rect(0, 0, mask.cols, mask.rows);
+            if (r.area() <= 0) continue;
+            in_trap[i] = cv::countNonZero(mask(r)) > 0.5 * r.area();
+            if (in_trap[i]) {
+              ++trap_hyps;
+              trap_removed += vs[i].kept ? 0 : 1;
+            }
+          }
+        }
+      }
+
+      if (o.labels.empty()) continue;
+      const std::string label_path = o.labels + "/" + f.name + ".txt";
+      if (!fs::exists(label_path)) continue;
+      std::vector<KittiLabel> labels = readKittiLabels(label_path);
+      if (o.visible)
+        for (auto& l : labels)
+          if (l.type != "DontCare" && (l.occluded >= 2 || l.truncated >= 0.5f)) l.z = 1e9f;  // -> ignored
+
+      std::vector<EvalBox> hyps, val;
+      std::vector<size_t> val_index;
+      for (size_t i = 0; i < st.hypotheses.size(); ++i) {
+        EvalBox b = boxOf(st.hypotheses[i]);
+        hyps.push_back(b);
+        if (vs[i].kept) {
+          b.score = vs[i].score;
+          val.push_back(b);
+          val_index.push_back(i);
+        }
+      }
+      std::vector<int> ml_all, ml_kept;
+      const auto out_all = matchFrame(hyps, labels, ep, ml_all);
+      const auto out_kept = matchFrame(val, labels, ep, ml_kept);
+      const EvalCounts c_all = evaluateFrame(hyps, labels, ep), c_kept = evaluateFrame(val, labels, ep);
+      all.add(c_all);
+      kept.add(c_kept);
+      if (std::count(out_all.begin(), out_all.end(), Outcome::FP) != c_all.fp ||
+          std::count(out_kept.begin(), out_kept.end(), Outcome::TP) != c_kept.tp)
+        throw std::logic_error("per-detection matcher disagrees with evaluateFrame");
+
+      for (size_t i = 0; i < labels.size(); ++i) {
+        const auto& l = labels[i];
+        if (l.type == "DontCare" || (l.z > 0 && l.z > ep.max_distance_m)) continue;
+        ++cls_objects[l.type];
+      }
+      std::vector<bool> kept_tp_label(labels.size(), false);
+      for (size_t k = 0; k < val.size(); ++k)
+        if (out_kept[k] == Outcome::TP) ++cls_tp_kept[labels[ml_kept[k]].type], kept_tp_label[ml_kept[k]] = true;
+      for (size_t i = 0; i < hyps.size(); ++i) {
+        if (out_all[i] == Outcome::TP) {
+          ++cls_tp_all[labels[ml_all[i]].type];
+          if (!vs[i].kept) ++tp_lost[reasonKind(vs[i])];
+        } else if (out_all[i] == Outcome::FP) {
+          (vs[i].kept ? fp_kept : fp_removed)[reasonKind(vs[i])]++;
+          // Where the false positive lies: on a labelled object (split, merge,
+          // loose box) or on background / a trap.
+          float best = 0, cover = 0;
+          for (const auto& l : labels) {
+            if (l.type == "DontCare") continue;
+            best = std::max(best, iou(hyps[i], boxOf(l)));
+            cover = std::max(cover, intersection(hyps[i], boxOf(l)) / std::max(1.f, area(hyps[i])));
+          }
+          std::string where = in_trap[i] ? "trap" : best > 0.2f ? "object, IoU 0.2-0.5" : cover > 0.5f
+                                                     ? "part of an object" : best > 0.0f ? "touches an object"
+                                                                                          : "background";
+          ++fp_where[where + (vs[i].kept ? " / kept" : " / removed")];
+        }
+      }
+
+      // Per-object coverage (labels with a 3D position only).
+      for (size_t i = 0; i < labels.size(); ++i) {
+        const auto& l = labels[i];
+        if (l.type == "DontCare" || l.x < -999 || l.z <= 0 || l.z > ep.max_distance_m) continue;
+        int ti = -1;
+        float bestd = 1e9f;
+        for (size_t t = 0; t < tracks.size(); ++t) {
+          const Track& tr = tracks[t];
+          if (tr.type != l.type || tr.last_frame != static_cast<int>(fi) - 1) continue;
+          if (std::abs(tr.h - l.h) > 0.02f || std::abs(tr.w - l.w) > 0.02f || std::abs(tr.l - l.l) > 0.02f) continue;
+          const float dx = std::abs(tr.x - l.x), dz = std::abs(tr.z - l.z);
+          if (dx < 1.5f && dz < 6.0f && dx + dz < bestd) bestd = dx + dz, ti = static_cast<int>(t);
+        }
+        if (ti < 0) {
+          tracks.push_back({l.type, l.h, l.w, l.l, l.x, l.z, static_cast<int>(fi)});
+          ti = static_cast<int>(tracks.size()) - 1;
+        }
+        Track& tr = tracks[ti];
+        tr.x = l.x, tr.z = l.z, tr.last_frame = static_cast<int>(fi);
+        if (o.visible && (l.occluded >= 2 || l.truncated >= 0.5f)) continue;
+        ++tr.frames;
+        tr.min_z = std::min(tr.min_z, l.z);
+        tr.max_z = std::max(tr.max_z, l.z);
+        bool cov = false;
+        for (const auto& h : hyps) cov = cov || iou(h, boxOf(l)) > ep.min_iou;
+        tr.covered += cov ? 1 : 0;
+        tr.kept_covered += kept_tp_label[i] ? 1 : 0;
+      }
+
+      if (o.per_frame) {
+        std::printf("frame %s: %zu hyps, all TP %d FP %d FN %d | kept TP %d FP %d FN %d\n", f.name.c_str(),
+                    hyps.size(), c_all.tp, c_all.fp, c_all.fn, c_kept.tp, c_kept.fp, c_kept.fn);
+        // Misses: each counted label no hypothesis matched, with the closest box.
+        std::vector<bool> hit(labels.size(), false);
+        for (size_t i = 0; i < hyps.size(); ++i)
+          if (out_all[i] == Outcome::TP) hit[ml_all[i]] = true;
+        for (size_t i = 0; i < labels.size(); ++i) {
+          const auto& l = labels[i];
+          if (hit[i] || l.type == "DontCare" || (l.z > 0 && l.z > ep.max_distance_m)) continue;
+          int best = -1;
+          float bi = 0;
+          for (size_t k = 0; k < hyps.size(); ++k)
+            if (iou(hyps[k], boxOf(l)) > bi) bi = iou(hyps[k], boxOf(l)), best = int(k);
+          std::printf("  miss %-10s occ %d z %5.1f box %4.0f,%3.0f-%4.0f,%3.0f", l.type.c_str(), l.occluded, l.z,
+                      l.x1, l.y1, l.x2, l.y2);
+          if (best >= 0)
+            std::printf("  best hyp %d IoU %.2f box %4.0f,%3.0f-%4.0f,%3.0f z %.1f %s", best, bi, hyps[best].x1,
+                        hyps[best].y1, hyps[best].x2, hyps[best].y2, st.hypotheses[best].z_m, vs[best].label.c_str());
+          std::printf("\n");
+        }
+        for (size_t k = 0; k < hyps.size(); ++k) {
+          if (out_all[k] == Outcome::Ignored) continue;
+          const NormalStats& ns = sn.rois[k];
+          std::printf("  %s hyp %d box %4.0f,%3.0f-%4.0f,%3.0f z %.1f h %.2f w %.2f | n %d dens %.2f g %.2f o %.2f e %.2f "
+                      "elev %.0f tilt %.0f | %s%s\n", out_all[k] == Outcome::TP ? "tp  " : "fp  ", int(k), hyps[k].x1,
+                      hyps[k].y1, hyps[k].x2, hyps[k].y2, st.hypotheses[k].z_m, st.hypotheses[k].height_m,
+                      st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
+                      ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
+                      vs[k].kept ? "" : " (removed)");
+        }
+      }
+
+      if (!o.overlay.empty()) {
+        cv::Mat img = cv::imread(f.left_path, cv::IMREAD_COLOR);
+        for (const auto& l : labels) {
+          const cv::Scalar col = l.type == "DontCare" ? cv::Scalar(128, 128, 128) : cv::Scalar(255, 0, 0);
+          cv::rectangle(img, cv::Point(int(l.x1), int(l.y1)), cv::Point(int(l.x2), int(l.y2)), col, 1);
+        }
+        for (size_t i = 0; i < hyps.size(); ++i) {
+          const Box& b = st.hypotheses[i].box;
+          const cv::Scalar col = out_all[i] == Outcome::TP ? cv::Scalar(0, 255, 0)
+                                 : out_all[i] == Outcome::FP ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 255, 255);
+          cv::rectangle(img, cv::Rect(b.x, b.y, b.w, b.h), col, vs[i].kept ? 2 : 1);
+          cv::putText(img, std::to_string(i) + (vs[i].kept ? "" : "x") + vs[i].label.substr(0, 1),
+                      cv::Point(b.x, b.y - 2), cv::FONT_HERSHEY_PLAIN, 0.8, col, 1);
+        }
+        cv::imwrite(o.overlay + "/" + f.name + ".png", img);
+      }
+    }
+
+    auto median = [](std::vector<double> v) {
+      if (v.empty()) return 0.0;
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      return v[v.size() / 2];
+    };
+    auto mean = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return v.empty() ? 0.0 : s / v.size();
+    };
+
+    std::printf("data %s: %d frames, %d hypotheses, %d frames without ground\n", o.data.c_str(), frames_done,
+                num_hyps, frames_no_ground);
+    if (!o.labels.empty()) {
+      std::printf("IoU > %.2f%s%s\n", ep.min_iou,
+                  o.max_distance_m < 1e8 ? (", labels within " + std::to_string(int(o.max_distance_m)) + " m").c_str() : "",
+                  o.visible ? ", occlusion < 2 and truncation < 0.5 only" : "");
+      std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
+      for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
+        std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn, c.precision(),
+                    c.recall(), c.f1());
+      const int removed_fp = all.fp - kept.fp;
+      std::printf("SNV: precision %+.1f points, recall %+.1f points, %d of %d FPs removed (%.0f %%), %d TPs lost\n",
+                  100 * (kept.precision() - all.precision()), 100 * (kept.recall() - all.recall()), removed_fp,
+                  all.fp, all.fp ? 100.0 * removed_fp / all.fp : 0.0, all.tp - kept.tp);
+      std::printf("recall per class (stixel only / + SNV):");
+      for (const auto& [t, n] : cls_objects)
+        std::printf("  %s %d/%d, %d/%d", t.c_str(), cls_tp_all[t], n, cls_tp_kept[t], n);
+      std::printf("\n");
+      auto dump = [](const char* title, const std::map<std::string, int>& m) {
+        if (m.empty()) return;
+        std::printf("%s\n", title);
+        for (const auto& [k, n] : m) std::printf("  %5d  %s\n", n, k.c_str());
+      };
+      dump("false positives of stixel only, removed by SNV (verdict: reason):", fp_removed);
+      dump("false positives kept by SNV (verdict):", fp_kept);
+      dump("true positives lost by SNV (verdict: reason):", tp_lost);
+      dump("false positives by location (stixel only):", fp_where);
+    }
+    std::printf("verdicts:");
+    for (const auto& [k, n] : verdicts) std::printf("  %s %d", k.c_str(), n);
+    std::printf("\n");
+    if (have_traps)
+      std::printf("trap hypotheses (> 50 %% of the box in trap_mask): %d, removed %d, kept %d\n", trap_hyps,
+                  trap_removed, trap_hyps - trap_removed);
+    if (!tracks.empty()) {
+      int n = 0, ok = 0;
+      std::vector<const Track*> bad;
+      for (const Track& t : tracks) {
+        if (t.frames == 0) continue;
+        ++n;
+        if (t.covered >= 0.95 * t.frames) ++ok;
+        else bad.push_back(&t);
+      }
+      std::printf("per-object coverage (hypothesis IoU > 0.5) of %d objects%s: %d covered in >= 95 %% of their frames\n",
+                  n, o.visible ? " (occlusion < 2, truncation < 0.5)" : "", ok);
+      for (const Track* t : bad)
+        std::printf("  %-10s %2d/%2d frames covered (kept TP %2d), z %.1f..%.1f m, x %.1f\n", t->type.c_str(),
+                    t->covered, t->frames, t->kept_covered, t->min_z, t->max_z, t->x);
+    }
+    if (ground_h.n || snv_h.n)
+      std::printf("pose vs extrinsics (mean / max |error|): ground model height %+.3f / %.3f m, pitch %+.3f / %.3f deg "
+                  "(%d frames); SNV filtered height %+.3f / %.3f m, pitch %+.3f / %.3f deg; instant height %+.3f / "
+                  "%.3f m, pitch %+.3f / %.3f deg (%d frames)\n",
+                  ground_h.mean(), ground_h.max, ground_p.mean(), ground_p.max, ground_h.n, snv_h.mean(), snv_h.max,
+                  snv_p.mean(), snv_p.max, snv_ih.mean(), snv_ih.max, snv_ip.mean(), snv_ip.max, snv_h.n);
+    std::printf("ms per frame (median / mean): sgbm %.2f / %.2f (%zu computed, rest cached), stixel %.2f / %.2f, "
+                "snv %.2f / %.2f, validator %.3f / %.3f\n",
+                median(ms_sgbm), mean(ms_sgbm), ms_sgbm.size(), median(ms_stixel), mean(ms_stixel),
+                median(ms_snv), mean(ms_snv), median(ms_val), mean(ms_val));
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_detection: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,91 @@
+#include "box_refinement.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ground_geometry.hpp"
+
+namespace nerv::stixel {
+
+namespace {
+
+// Disparity tolerance of a depth tolerance at disparity d: dZ = Z^2/(fB) dd.
+float toleranceAt(float d, double fb, float tol_m) {
+  return std::max(1.0f, static_cast<float>(d * d * tol_m / fb));
+}
+
+// Pixels of column u, rows [y0, y1], within [lo, hi] and above the road.
+int columnCount(const cv::Mat& disp, const GroundModel& g, float road_tol_m, int u, int y0, int y1,
+                float lo, float hi) {
+  int n = 0;
+  for (int v = y0; v <= y1; ++v) {
+    const float x = disp.ptr<float>(v)[u];
+    if (x >= lo && x <= hi && heightAboveGround(g, static_cast<float>(v), x) > road_tol_m) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
+               const std::vector<const Stixel*>& group, int column_width_px,
+               const BoxRefinementParams& p, PixelBox& box) {
+  if (group.empty() || disparity.empty()) return;
+  const double fb = cam.fx * cam.baseline_m;
+  const int cols = disparity.cols, cw = std::max(1, column_width_px);
+
+  // Left and right edges: scan the edge stixel's strip and the strip outside it.
+  auto edgeOk = [&](const Stixel& s, int u) {
+    if (u < 0 || u >= cols) return false;
+    const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
+    const int rows = s.bottom_row - s.top_row + 1;
+    return columnCount(disparity, ground, p.ground_tolerance_m, u, s.top_row, s.bottom_row,
+                       s.disparity - tol, s.disparity + tol) >= p.min_column_fill * rows;
+  };
+  const Stixel& left = *group.front();
+  const Stixel& right = *group.back();
+  int x0 = box.x0, x1 = box.x1;
+  {
+    int u = left.u;
+    const int end = left.u + left.width;
+    while (u < end && !edgeOk(left, u)) ++u;
+    if (u < end) {
+      if (u == left.u)
+        while (u > left.u - cw && edgeOk(left, u - 1)) --u;  // the object continues outside
+      x0 = u;
+    }
+  }
+  {
+    int u = right.u + right.width - 1;
+    while (u >= right.u && !edgeOk(right, u)) --u;
+    if (u >= right.u) {
+      if (u == right.u + right.width - 1)
+        while (u < right.u + right.width - 1 + cw && edgeOk(right, u + 1)) ++u;
+      x1 = u + 1;
+    }
+  }
+  if (x1 - x0 < 1) return;
+
+  // Top: first row (from the union's top down) where pixels at the group's
+  // depths fill min_row_fill of the width, confirmed by the next row.
+  float dmin = group.front()->disparity, dmax = dmin;
+  for (const Stixel* s : group) dmin = std::min(dmin, s->disparity), dmax = std::max(dmax, s->disparity);
+  const float lo = dmin - toleranceAt(dmin, fb, p.depth_tolerance_m);
+  const float hi = dmax + toleranceAt(dmax, fb, p.depth_tolerance_m);
+  const float need = p.min_row_fill * (x1 - x0);
+  auto rowOk = [&](int v) {
+    const float* row = disparity.ptr<float>(v);
+    int n = 0;
+    for (int u = x0; u < x1; ++u)
+      if (row[u] >= lo && row[u] <= hi && heightAboveGround(ground, static_cast<float>(v), row[u]) > p.ground_tolerance_m) ++n;
+    return n >= need;
+  };
+  int y0 = box.y0;
+  while (y0 < box.y1 - 1 && !(rowOk(y0) && rowOk(y0 + 1))) ++y0;
+  if (y0 >= box.y1 - 1) y0 = box.y0;  // nothing fills the box: keep the union
+  box.x0 = x0;
+  box.x1 = x1;
+  box.y0 = y0;
+}
+
+}  // namespace nerv::stixel

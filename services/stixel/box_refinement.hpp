@@ -1,0 +1,39 @@
+// Pixel-accurate box edges for a group of stixels. Stixels are column_width_px
+// wide, so a group's union box is quantised to strips: a 0.12 m post at 20 m is
+// 4 px wide but its box at least one strip, and a box edge can be off by a
+// strip on either side. The left and right edges are re-cut column by column
+// at the edge stixel's own disparity, and the top is lowered to the first row
+// where the object (pixels at the group's depths) fills enough of the box, so
+// a thin thing rising behind or above the object (a tree trunk, a facade at
+// nearly the same depth) does not stretch the box.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "perception_types.hpp"
+#include "stereo_camera.hpp"
+
+namespace nerv::stixel {
+
+struct BoxRefinementParams {
+  float depth_tolerance_m = 1.0f;   // a pixel belongs to a stixel within this depth [m] (>= 1 px)
+  float ground_tolerance_m = 0.15f; // pixels this close to the road are road, not object [m]
+  float min_column_fill = 0.25f;    // an edge column needs this share of the stixel's rows
+  float min_row_fill = 0.3f;        // the top row needs this share of the box width
+};
+
+struct PixelBox {
+  int x0 = 0, x1 = 0;  // columns [x0, x1)
+  int y0 = 0, y1 = 0;  // rows [y0, y1]
+};
+
+// group: the stixels of one hypothesis, left to right. `box` holds their union
+// on input and the refined box on output (never wider than the union plus one
+// strip on each side, never taller than the union).
+void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
+               const std::vector<const Stixel*>& group, int column_width_px,
+               const BoxRefinementParams& p, PixelBox& box);
+
+}  // namespace nerv::stixel
