@@ -162,6 +162,16 @@ void IntegralNormalField::normalRow(int v, int u0, int count, int step, NormalRo
   out.resize(std::max(count, 0));
   if (count <= 0 || empty() || v < row0_ || v >= row1_) return;
   CV_Assert(step >= 1 && u0 >= 0 && u0 + (count - 1) * step < cols());
+  // A compile-time unit step gives contiguous vector loads (a run-time step, strided ones).
+  if (step == 1)
+    normalRowImpl<true>(v, u0, count, 1, out);
+  else
+    normalRowImpl<false>(v, u0, count, step, out);
+}
+
+template <bool kUnit>
+void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, NormalRow& out) const {
+  const int step = kUnit ? 1 : run_step;
   const int cols = disparity_.cols;
   const int vb = std::min(v - row0_, row1_ - 1 - v);
   const int rmax = std::min(params_.max_radius_px, vb / 2);
@@ -207,13 +217,14 @@ void IntegralNormalField::normalRow(int v, int u0, int count, int step, NormalRo
   }
   // 3. Normals over runs of equal radius (long on roads and walls).
   if (fixed_point_)
-    normalRuns<uint32_t>(v, u0, count, step, out);
+    normalRuns<uint32_t, kUnit>(v, u0, count, step, out);
   else
-    normalRuns<double>(v, u0, count, step, out);
+    normalRuns<double, kUnit>(v, u0, count, step, out);
 }
 
-template <typename Acc>
-void IntegralNormalField::normalRuns(int v, int u0, int count, int step, NormalRow& out) const {
+template <typename Acc, bool kUnit>
+void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, NormalRow& out) const {
+  const int step = kUnit ? 1 : run_step;
   const int* rad = out.radius.data();
   float* nxo = out.nx.data();
   float* nyo = out.ny.data();

@@ -93,7 +93,9 @@ class IntegralNormalField {
   double boxSum(int u, int v, int r) const;  // value box sum (unscaled)
   int edgeCount(int u, int v, int r) const;
   float smoothedDepth(int u, int v, int r) const;
-  template <typename Acc>
+  template <bool kUnit>
+  void normalRowImpl(int v, int u0, int count, int step, NormalRow& out) const;
+  template <typename Acc, bool kUnit>
   void normalRuns(int v, int u0, int count, int step, NormalRow& out) const;
 
   cv::Mat disparity_;      // the caller's map (header only)
