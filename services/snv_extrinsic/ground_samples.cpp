@@ -50,19 +50,44 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
   const float fb = static_cast<float>(cam.fx * cam.baseline_m);
   const int v0 = (std::max(rows.start, field.rowBegin()) + interval_px - 1) / interval_px * interval_px;
   const int v1 = std::min(rows.end, field.rowEnd());
-  for (int v = v0; v < v1; v += interval_px) {
-    const float* d = disparity.ptr<float>(v);
-    for (int u = 0; u < disparity.cols; u += interval_px) {
-      if (!isGroundCandidate(v, d[u], cam, model, params)) continue;
-      const int r = field.adaptiveRadius(u, v);
-      cv::Vec3f n;
-      if (r < 1 || !field.normalAt(u, v, r, n) || -n[1] < min_up) continue;
-      const float z = fb / d[u];
-      out.push_back({u, v, n,
-                     cv::Vec3f(static_cast<float>((u - cam.cx) / cam.fx) * z,
-                               static_cast<float>((v - cam.cy) / cam.fy) * z, z)});
+  if (v0 >= v1) return out;
+  // Grid rows in parallel; each keeps its samples, concatenated in row order.
+  const int grid_rows = (v1 - v0 + interval_px - 1) / interval_px;
+  const int grid_cols = (disparity.cols + interval_px - 1) / interval_px;
+  std::vector<std::vector<GroundSample>> per_row(grid_rows);
+  cv::parallel_for_(cv::Range(0, grid_rows), [&](const cv::Range& range) {
+    NormalRow row;
+    std::vector<uchar> candidate(grid_cols);
+    for (int j = range.start; j < range.end; ++j) {
+      const int v = v0 + j * interval_px;
+      const float* d = disparity.ptr<float>(v);
+      // Candidates on the disparity alone; normals only over their span.
+      int first = grid_cols, last = -1;
+      for (int i = 0; i < grid_cols; ++i) {
+        candidate[i] = isGroundCandidate(v, d[i * interval_px], cam, model, params);
+        if (candidate[i]) {
+          first = std::min(first, i);
+          last = i;
+        }
+      }
+      if (last < first) continue;
+      field.normalRow(v, first * interval_px, last - first + 1, interval_px, row);
+      std::vector<GroundSample>& dst = per_row[j];
+      for (int i = first; i <= last; ++i) {
+        const int k = i - first;
+        if (!candidate[i] || row.radius[k] < 1 || !(-row.ny[k] >= min_up)) continue;
+        const int u = i * interval_px;
+        const float z = fb / d[u];
+        dst.push_back({u, v, cv::Vec3f(row.nx[k], row.ny[k], row.nz[k]),
+                       cv::Vec3f(static_cast<float>((u - cam.cx) / cam.fx) * z,
+                                 static_cast<float>((v - cam.cy) / cam.fy) * z, z)});
+      }
     }
-  }
+  });
+  size_t total = 0;
+  for (const auto& r : per_row) total += r.size();
+  out.reserve(total);
+  for (const auto& r : per_row) out.insert(out.end(), r.begin(), r.end());
   return out;
 }
 

@@ -3,12 +3,69 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "point_cloud.hpp"
 
+// This file is compiled with -ffp-contract=off (CMakeLists.txt): the vectorised
+// row path and the scalar reference must round alike (radius from depth, tests
+// "fast == reference").
+
 namespace nerv::snv {
+
+void NormalRow::resize(int n) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  nx.assign(n, nan);
+  ny.assign(n, nan);
+  nz.assign(n, nan);
+  radius.assign(n, 0);
+}
+
+namespace {
+
+// Fixed-point scale of the uint32 value integral: SGBM (1/16 px) and KITTI
+// ground truth (1/256 px) disparities are exact multiples of 1/256.
+constexpr float kFixedScale = 256.0f;
+
+// Running sums along the row: out[0] = 0, out[x+1] = out[x] + in[x]. The
+// vertical accumulation follows in accumulateColumns (cv::integral's order).
+template <typename In, typename Out>
+void rowPrefix(const In* in, int cols, Out* out) {
+  Out s = 0;
+  out[0] = 0;
+  for (int x = 0; x < cols; ++x) {
+    s += static_cast<Out>(in[x]);
+    out[x + 1] = s;
+  }
+}
+
+// integral[y][x] += integral[y-1][x] over all rows, columns in parallel blocks
+// (each column is independent; rows of one block are contiguous vector adds).
+template <typename T>
+void accumulateColumns(cv::Mat& integral) {
+  const int cols = integral.cols, block = 512;
+  cv::parallel_for_(cv::Range(0, (cols + block - 1) / block), [&](const cv::Range& range) {
+    const int x0 = range.start * block, x1 = std::min(cols, range.end * block);
+    for (int y = 1; y < integral.rows; ++y) {
+      const T* prev = integral.ptr<T>(y - 1);
+      T* cur = integral.ptr<T>(y);
+      for (int x = x0; x < x1; ++x) cur[x] += prev[x];
+    }
+  });
+}
+
+// Box sum from four integral rows/columns, as float.
+inline float boxFloat(const uint32_t* a, const uint32_t* b, int x0, int x1) {
+  return static_cast<float>(static_cast<int32_t>(b[x1] - a[x1] - b[x0] + a[x0]));
+}
+inline float boxFloat(const double* a, const double* b, int x0, int x1) {
+  return static_cast<float>(b[x1] - a[x1] - b[x0] + a[x0]);
+}
+
+}  // namespace
 
 void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& cam,
                                   const IntegralNormalParams& params, int row_begin, int row_end) {
@@ -23,38 +80,216 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
   inv_fy_ = static_cast<float>(1.0 / cam.fy);
 
   const int rows = row1_ - row0_, cols = disparity.cols;
-  cv::Mat value(rows, cols, CV_32F);
   edge_.create(rows, cols, CV_8U);
-  const float jump_px = params.depth_change_px, jump_rel = params.depth_change_rel;
-  for (int v = row0_; v < row1_; ++v) {
-    const float* d = disparity.ptr<float>(v);
-    const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
-    float* out = value.ptr<float>(v - row0_);
-    uchar* e = edge_.ptr<uchar>(v - row0_);
-    for (int u = 0; u < cols; ++u) {
-      const float c = d[u];
-      if (!validDisparity(c)) {
-        out[u] = 0.0f;
-        e[u] = 1;
-        continue;
+  edge_integral_.create(rows + 1, cols + 1, CV_32S);
+  edge_integral_.row(0).setTo(0);
+  // Fixed point is tried first (one pass); an inexact value falls back to CV_64F.
+  bool fixed = params.smooth_disparity;
+  value_integral_.create(rows + 1, cols + 1, fixed ? CV_32S : CV_64F);
+  value_integral_.row(0).setTo(0);
+  std::atomic<bool> inexact{false};
+
+  // Edge map, values and their row prefix sums, rows in parallel.
+  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    // Locals, not captures: a uchar store could alias a captured value and
+    // keep the loops below from vectorising.
+    const int cols = disparity.cols;
+    const float jump_px = params.depth_change_px, jump_rel = params.depth_change_rel;
+    const bool smooth = params.smooth_disparity;
+    const float fb = fb_;
+    std::vector<float> value(cols);
+    std::vector<uint32_t> fixed_value(cols);
+    for (int y = range.start; y < range.end; ++y) {
+      const int v = y + row0_;
+      const float* d = disparity.ptr<float>(v);
+      const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
+      uchar* e = edge_.ptr<uchar>(y);
+      float* val = value.data();
+      // Branch-free so it vectorises. A jump to the right or below marks this
+      // pixel: any window spanning the jump contains it.
+      auto pixel = [&](int u, float right) {
+        const float c = d[u];
+        const bool valid = (c > 0.0f) & (c < 1e6f);  // validDisparity
+        const float safe = valid ? c : 1.0f;
+        const float depth = fb / safe;
+        const float thr = std::max(jump_px, jump_rel * c);
+        const bool jump = (std::abs(right - c) > thr) | (std::abs(below[u] - c) > thr);
+        e[u] = static_cast<uchar>(!valid | jump);
+        val[u] = valid ? (smooth ? c : depth) : 0.0f;
+      };
+      for (int u = 0; u + 1 < cols; ++u) pixel(u, d[u + 1]);
+      if (cols > 0) pixel(cols - 1, d[cols - 1]);
+      rowPrefix(e, cols, edge_integral_.ptr<int>(y + 1));
+      if (fixed) {
+        int bad = 0;
+        uint32_t* q = fixed_value.data();
+        for (int u = 0; u < cols; ++u) {
+          const float scaled = val[u] * kFixedScale;
+          const float rounded = std::nearbyint(scaled);
+          bad |= rounded != scaled;
+          q[u] = static_cast<uint32_t>(static_cast<int32_t>(rounded));
+        }
+        if (bad) inexact = true;
+        if (!inexact) rowPrefix(q, cols, value_integral_.ptr<uint32_t>(y + 1));
+      } else {
+        rowPrefix(val, cols, value_integral_.ptr<double>(y + 1));
       }
-      out[u] = params.smooth_disparity ? c : fb_ / c;
-      // A jump to the right or below marks this pixel: any window spanning the
-      // jump contains it.
-      const float thr = std::max(jump_px, jump_rel * c);
-      const float right = u + 1 < cols ? d[u + 1] : c;
-      const bool jump = std::abs(right - c) > thr || std::abs(below[u] - c) > thr;
-      e[u] = jump ? 1 : 0;
     }
+  });
+  if (fixed && inexact) {
+    // Not a multiple of 1/256 somewhere: exact sums need the CV_64F integral.
+    fixed = false;
+    value_integral_.create(rows + 1, cols + 1, CV_64F);
+    value_integral_.row(0).setTo(0);
+    cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+      std::vector<float> value(cols);
+      for (int y = range.start; y < range.end; ++y) {
+        const float* d = disparity.ptr<float>(y + row0_);
+        for (int u = 0; u < cols; ++u) value[u] = validDisparity(d[u]) ? d[u] : 0.0f;
+        rowPrefix(value.data(), cols, value_integral_.ptr<double>(y + 1));
+      }
+    });
   }
-  cv::integral(value, value_integral_, CV_64F);
-  cv::integral(edge_, edge_integral_, CV_32S);
+  fixed_point_ = fixed;
+  accumulateColumns<int>(edge_integral_);
+  if (fixed_point_)
+    accumulateColumns<uint32_t>(value_integral_);
+  else
+    accumulateColumns<double>(value_integral_);
 }
 
-double IntegralNormalField::boxSum(const cv::Mat& integral, int u, int v, int r) const {
+void IntegralNormalField::normalRow(int v, int u0, int count, int step, NormalRow& out) const {
+  out.resize(std::max(count, 0));
+  if (count <= 0 || empty() || v < row0_ || v >= row1_) return;
+  CV_Assert(step >= 1 && u0 >= 0 && u0 + (count - 1) * step < cols());
+  // A compile-time unit step gives contiguous vector loads (a run-time step, strided ones).
+  if (step == 1)
+    normalRowImpl<true>(v, u0, count, 1, out);
+  else
+    normalRowImpl<false>(v, u0, count, step, out);
+}
+
+template <bool kUnit>
+void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, NormalRow& out) const {
+  const int step = kUnit ? 1 : run_step;
+  const int cols = disparity_.cols;
+  const int vb = std::min(v - row0_, row1_ - 1 - v);
+  const int rmax = std::min(params_.max_radius_px, vb / 2);
+  if (rmax < 1) return;
+
+  // 1. Radius from depth and borders (depthRadius), branch-free.
+  const float* d = disparity_.ptr<float>(v);
+  int* rad = out.radius.data();
+  std::vector<int> depth_r(count);
+  int* rt = depth_r.data();
+  const float base = params_.window_base_px, per_m = params_.window_px_per_m;
+  const float cap = static_cast<float>(params_.max_radius_px);
+  for (int i = 0; i < count; ++i) {
+    const int u = u0 + i * step;
+    const float c = d[u];
+    const bool valid = (c > 0.0f) & (c < 1e6f);
+    const float z = fb_ / (valid ? c : 1.0f);
+    // min() in float first: same integer as the reference, without an out-of-range conversion.
+    const int r = static_cast<int>(std::min((base + per_m * z) * 0.5f, cap));
+    const int border = std::min(std::min(u, cols - 1 - u), vb);
+    rt[i] = valid ? std::max(0, std::min(r, border / 2)) : 0;
+    rad[i] = 0;
+  }
+  // 2. Adaptive radius: grow r while the (4r+1)^2 window holds no edge and r
+  //    <= rt (windows are nested, so this equals the reference's shrinking).
+  for (int r = 1; r <= rmax; ++r) {
+    const int w = 2 * r;
+    const int* a = edge_integral_.ptr<int>(v - w - row0_);
+    const int* b = edge_integral_.ptr<int>(v + w + 1 - row0_);
+    // Only pixels whose windows fit in the columns can have rt >= r.
+    const int i_lo = std::max(0, (w - u0 + step - 1) / step);
+    const int room = cols - 1 - w - u0;
+    const int i_hi = room < 0 ? 0 : std::min(count, room / step + 1);
+    int grown = 0;
+    for (int i = i_lo; i < i_hi; ++i) {
+      const int u = u0 + i * step;
+      const int edges = b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w];
+      const int ok = (edges == 0) & (rad[i] == r - 1) & (rt[i] >= r);
+      rad[i] += ok;
+      grown |= ok;
+    }
+    if (!grown) break;
+  }
+  // 3. Normals over runs of equal radius (long on roads and walls).
+  if (fixed_point_)
+    normalRuns<uint32_t, kUnit>(v, u0, count, step, out);
+  else
+    normalRuns<double, kUnit>(v, u0, count, step, out);
+}
+
+template <typename Acc, bool kUnit>
+void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, NormalRow& out) const {
+  const int step = kUnit ? 1 : run_step;
+  const int* rad = out.radius.data();
+  float* nxo = out.nx.data();
+  float* nyo = out.ny.data();
+  float* nzo = out.nz.data();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float cx = static_cast<float>(cam_.cx), cy = static_cast<float>(cam_.cy);
+  const float ifx = inv_fx_, ify = inv_fy_;
+  const bool smooth = params_.smooth_disparity;
+  for (int i = 0; i < count;) {
+    const int r = rad[i];
+    int j = i + 1;
+    while (j < count && rad[j] == r) ++j;
+    if (r < 1) {
+      i = j;
+      continue;
+    }
+    auto row = [&](int image_row) { return value_integral_.ptr<Acc>(image_row - row0_); };
+    // Box rows: left/right centres (v-r .. v+r), down (v .. v+2r), up (v-2r .. v).
+    const Acc* a = row(v - r);
+    const Acc* b = row(v + r + 1);
+    const Acc* dn0 = row(v);
+    const Acc* dn1 = row(v + 2 * r + 1);
+    const Acc* up0 = row(v - 2 * r);
+    const Acc* up1 = row(v + 1);
+    const float yd = (v + r - cy) * ify, yu = (v - r - cy) * ify, yc = (v - cy) * ify;
+    // Z ~ 1/S (disparity smoothed) or Z ~ S (depth smoothed). N's direction does not
+    // change when h is scaled by S_r*S_l > 0 and t by S_d*S_u > 0, so with smoothed
+    // disparity z_r -> S_l, z_l -> S_r (and likewise d/u): no division per pixel.
+    const int right0 = smooth ? -2 * r : 0, left0 = smooth ? 0 : -2 * r;  // box column starts
+    const Acc* zd0 = smooth ? up0 : dn0;
+    const Acc* zd1 = smooth ? up1 : dn1;
+    const Acc* zu0 = smooth ? dn0 : up0;
+    const Acc* zu1 = smooth ? dn1 : up1;
+    const int side = 2 * r + 1;
+    for (int k = i; k < j; ++k) {
+      const int u = u0 + k * step;
+      const float zr = boxFloat(a, b, u + right0, u + right0 + side);
+      const float zl = boxFloat(a, b, u + left0, u + left0 + side);
+      const float zd = boxFloat(zd0, zd1, u - r, u + r + 1);
+      const float zu = boxFloat(zu0, zu1, u - r, u + r + 1);
+      const float xr = (u + r - cx) * ifx, xl = (u - r - cx) * ifx, xc = (u - cx) * ifx;
+      const float hx = xr * zr - xl * zl, hy = yc * (zr - zl), hz = zr - zl;
+      const float tx = xc * (zd - zu), ty = yd * zd - yu * zu, tz = zd - zu;
+      const float nx = ty * hz - tz * hy, ny = tz * hx - tx * hz, nz = tx * hy - ty * hx;
+      const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+      const bool ok = (zr > 0) & (zl > 0) & (zd > 0) & (zu > 0) & (len > 0);
+      const float inv = 1.0f / (ok ? len : 1.0f);
+      nxo[k] = ok ? nx * inv : nan;
+      nyo[k] = ok ? ny * inv : nan;
+      nzo[k] = ok ? nz * inv : nan;
+    }
+    i = j;
+  }
+}
+
+double IntegralNormalField::boxSum(int u, int v, int r) const {
   const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r, x1 = u + r + 1;
-  const double* a = integral.ptr<double>(y0);
-  const double* b = integral.ptr<double>(y1);
+  if (fixed_point_) {
+    const uint32_t* a = value_integral_.ptr<uint32_t>(y0);
+    const uint32_t* b = value_integral_.ptr<uint32_t>(y1);
+    const int32_t s = static_cast<int32_t>(b[x1] - a[x1] - b[x0] + a[x0]);  // exact modulo 2^32
+    return s / static_cast<double>(kFixedScale);
+  }
+  const double* a = value_integral_.ptr<double>(y0);
+  const double* b = value_integral_.ptr<double>(y1);
   return b[x1] - a[x1] - b[x0] + a[x0];
 }
 
@@ -67,7 +302,7 @@ int IntegralNormalField::edgeCount(int u, int v, int r) const {
 
 float IntegralNormalField::smoothedDepth(int u, int v, int r) const {
   const double side = 2 * r + 1;
-  const double mean = boxSum(value_integral_, u, v, r) / (side * side);
+  const double mean = boxSum(u, v, r) / (side * side);
   if (params_.smooth_disparity) return mean > 0 ? static_cast<float>(fb_ / mean) : -1.0f;
   return static_cast<float>(mean);
 }
@@ -123,28 +358,19 @@ NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
   map.interval_px = interval_px;
   const int gw = (disparity.cols + interval_px - 1) / interval_px;
   const int gh = (disparity.rows + interval_px - 1) / interval_px;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
   map.normals.create(gh, gw, CV_32FC3);
   if (disparity.empty()) return map;
 
   IntegralNormalField field;
   field.prepare(disparity, cam, params);
-  // r = min(B, T) read from the edge integral (adaptiveRadius) rather than a
-  // cv::distanceTransform: the same radius (see edgeDistance() and its test),
-  // but O(1) per pixel without a full-frame transform.
+  // r = min(B, T) read from the edge integral rather than a cv::distanceTransform:
+  // the same radius (see edgeDistance() and its test) without a full-frame transform.
   cv::parallel_for_(cv::Range(0, gh), [&](const cv::Range& range) {
+    NormalRow row;
     for (int j = range.start; j < range.end; ++j) {
-      const int v = j * interval_px;
+      field.normalRow(j * interval_px, 0, gw, interval_px, row);
       cv::Vec3f* out = map.normals.ptr<cv::Vec3f>(j);
-      for (int i = 0; i < gw; ++i) {
-        const int u = i * interval_px;
-        const int r = field.adaptiveRadius(u, v);
-        cv::Vec3f n;
-        if (r >= 1 && field.normalAt(u, v, r, n))
-          out[i] = n;
-        else
-          out[i] = cv::Vec3f(nan, nan, nan);
-      }
+      for (int i = 0; i < gw; ++i) out[i] = cv::Vec3f(row.nx[i], row.ny[i], row.nz[i]);
     }
   });
   return map;

@@ -19,6 +19,7 @@
 #include <opencv2/core.hpp>
 
 #include <climits>
+#include <vector>
 
 #include "stereo_camera.hpp"
 
@@ -39,12 +40,26 @@ struct NormalMap {
   cv::Mat normals;  // CV_32FC3 unit normals (x, y, z), NaN where there is no normal
 };
 
+// Normals of one grid row, structure of arrays: sample i is pixel
+// (u0 + i*step, v); nx/ny/nz are NaN where there is no normal, radius is r (0 = none).
+struct NormalRow {
+  std::vector<float> nx, ny, nz;
+  std::vector<int> radius;
+  void resize(int n);
+};
+
 // Integral images of one disparity map (or a band of its rows) from which the
 // normal at any pixel is read in O(1). Shared by the full-frame map and the
 // local (ROI / ground) normals so both give identical vectors.
+//
+// Value integral: when every valid value of the band is a multiple of 1/256
+// (SGBM disparity is 1/16 px, KITTI ground truth 1/256 px) it holds 256 * d as
+// wrapping uint32: a box sum (at most 289 * 256 * d) is then exact; otherwise
+// CV_64F. Both give bit-identical box sums on quantised input.
 class IntegralNormalField {
  public:
   // Prepares rows [row_begin, row_end) (clamped to the image). disparity: CV_32F, <= 0 invalid.
+  // Rows are prepared in parallel (cv::parallel_for_).
   void prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
                int row_begin = 0, int row_end = INT_MAX);
 
@@ -52,7 +67,16 @@ class IntegralNormalField {
   int rowEnd() const { return row1_; }
   bool empty() const { return disparity_.empty(); }
   int cols() const { return disparity_.cols; }
+  // True when the value integral is the exact fixed-point (uint32) one.
+  bool fixedPoint() const { return fixed_point_; }
 
+  // --- fast path: a whole grid row at once (vectorised, no per-pixel division) ---
+  // Normals of pixels (u0 + i*step, v), i < count; v in the band, u0 >= 0,
+  // u0 + (count-1)*step < cols. Equal to adaptiveRadius + normalAt per pixel
+  // (same radius; vectors within float rounding, test FastRowEqualsReference).
+  void normalRow(int v, int u0, int count, int step, NormalRow& out) const;
+
+  // --- slow, per-pixel reference path (tests, and a few single pixels) ---
   // Largest radius allowed by depth (T) and borders alone; 0 where the pixel is invalid.
   int depthRadius(int u, int v) const;
   // Adaptive radius r = min(floor((B-1)/2), depthRadius) where B is the chessboard
@@ -66,21 +90,26 @@ class IntegralNormalField {
   cv::Mat edgeDistance() const;
 
  private:
-  double boxSum(const cv::Mat& integral, int u, int v, int r) const;  // CV_64F integral
+  double boxSum(int u, int v, int r) const;  // value box sum (unscaled)
   int edgeCount(int u, int v, int r) const;
   float smoothedDepth(int u, int v, int r) const;
+  template <bool kUnit>
+  void normalRowImpl(int v, int u0, int count, int step, NormalRow& out) const;
+  template <typename Acc, bool kUnit>
+  void normalRuns(int v, int u0, int count, int step, NormalRow& out) const;
 
   cv::Mat disparity_;      // the caller's map (header only)
-  cv::Mat value_integral_; // CV_64F integral of disparity (or depth), invalid = 0, band rows
+  cv::Mat value_integral_; // CV_32S (uint32, 256 * value) or CV_64F integral, invalid = 0, band rows
   cv::Mat edge_;           // CV_8U, 1 = edge/invalid, band rows
   cv::Mat edge_integral_;  // CV_32S integral of edge_
+  bool fixed_point_ = false;
   StereoCamera cam_;
   IntegralNormalParams params_;
   int row0_ = 0, row1_ = 0;
   float fb_ = 0, inv_fx_ = 0, inv_fy_ = 0;
 };
 
-// Full-frame SNV map at any interval (rows in parallel with cv::parallel_for_).
+// Full-frame SNV map at any interval (fast row path, rows in parallel with cv::parallel_for_).
 NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
                            const IntegralNormalParams& params, int interval_px);
 

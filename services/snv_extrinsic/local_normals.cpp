@@ -1,6 +1,7 @@
 #include "local_normals.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace nerv::snv {
 namespace {
@@ -18,14 +19,17 @@ int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, i
   const int v0 = firstGrid(std::max(rect.y, field.rowBegin()), interval_px);
   const int u1 = std::min(rect.x + rect.width, field.cols());
   const int v1 = std::min(rect.y + rect.height, field.rowEnd());
+  if (u0 >= u1 || v0 >= v1) return 0;
+  const int count = (u1 - u0 + interval_px - 1) / interval_px;
   int samples = 0;
-  for (int v = v0; v < v1; v += interval_px)
-    for (int u = u0; u < u1; u += interval_px) {
-      ++samples;
-      const int r = field.adaptiveRadius(u, v);
-      cv::Vec3f n;
-      if (r >= 1 && field.normalAt(u, v, r, n)) out.push_back({u, v, n});
-    }
+  NormalRow row;
+  for (int v = v0; v < v1; v += interval_px) {
+    samples += count;
+    field.normalRow(v, u0, count, interval_px, row);
+    for (int i = 0; i < count; ++i)
+      if (row.radius[i] >= 1 && !std::isnan(row.nx[i]))
+        out.push_back({u0 + i * interval_px, v, cv::Vec3f(row.nx[i], row.ny[i], row.nz[i])});
+  }
   return samples;
 }
 

@@ -80,4 +80,28 @@ bool bruteForceSmoothedNormal(const cv::Mat& disparity, const StereoCamera& cam,
   return unitNormal(t, h, n);
 }
 
+NormalMap computeNormalMapReference(const cv::Mat& disparity, const StereoCamera& cam,
+                                    const IntegralNormalParams& params, int interval_px) {
+  CV_Assert(interval_px >= 1);
+  NormalMap map;
+  map.interval_px = interval_px;
+  const int gw = (disparity.cols + interval_px - 1) / interval_px;
+  const int gh = (disparity.rows + interval_px - 1) / interval_px;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  map.normals.create(gh, gw, CV_32FC3);
+  if (disparity.empty()) return map;
+  IntegralNormalField field;
+  field.prepare(disparity, cam, params);
+  for (int j = 0; j < gh; ++j) {
+    cv::Vec3f* out = map.normals.ptr<cv::Vec3f>(j);
+    for (int i = 0; i < gw; ++i) {
+      const int u = i * interval_px, v = j * interval_px;
+      const int r = field.adaptiveRadius(u, v);
+      cv::Vec3f n;
+      out[i] = r >= 1 && field.normalAt(u, v, r, n) ? n : cv::Vec3f(nan, nan, nan);
+    }
+  }
+  return map;
+}
+
 }  // namespace nerv::snv

@@ -21,4 +21,10 @@ bool bruteForceSmoothedNormal(const cv::Mat& disparity, const StereoCamera& cam,
                               const IntegralNormalParams& params, int u, int v, int r,
                               cv::Vec3f& n);
 
+// The full-frame map read pixel by pixel through the scalar reference path
+// (IntegralNormalField::adaptiveRadius + normalAt, one division per box mean):
+// what computeNormalMap computed before its row path was vectorised.
+NormalMap computeNormalMapReference(const cv::Mat& disparity, const StereoCamera& cam,
+                                    const IntegralNormalParams& params, int interval_px);
+
 }  // namespace nerv::snv

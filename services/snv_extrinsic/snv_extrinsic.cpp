@@ -64,11 +64,13 @@ struct AngleEstimate {
   MeanShiftResult shift;
 };
 
+// O(n): radix sort, then the histogram mode read off the sorted run (the
+// references buildAngleHistogram and std::sort give the same values, tested).
 AngleEstimate estimateAngle(std::vector<float>& values, const Params& p) {
   AngleEstimate e;
-  e.mode = buildAngleHistogram(values, p.histogram_bin_deg).modeDeg();
+  sortAngles(values);
+  e.mode = sortedModeDeg(values, p.histogram_bin_deg);
   e.mean = static_cast<float>(std::accumulate(values.begin(), values.end(), 0.0) / values.size());
-  std::sort(values.begin(), values.end());
   e.shift = adaptiveMeanShift(values, e.mode, p.mean_shift_fraction, p.mean_shift_stop_deg);
   return e;
 }
@@ -160,13 +162,10 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
   pose.status = "no_ground";
   cv::Vec3f instant_normal(0, -1, 0);
   if (res.ground_samples >= params_.min_ground_normals) {
-    std::vector<float> pitch, roll;
-    pitch.reserve(samples.size());
-    roll.reserve(samples.size());
-    for (const GroundSample& s : samples) {
-      pitch.push_back(normalPitchDeg(s.n));
-      roll.push_back(normalRollDeg(s.n));
-    }
+    std::vector<cv::Vec3f> normals(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) normals[i] = samples[i].n;
+    std::vector<float> pitch(samples.size()), roll(samples.size());
+    normalAnglesDeg(normals.data(), static_cast<int>(normals.size()), pitch.data(), roll.data());
     const AngleEstimate ep = estimateAngle(pitch, params_);  // sorts pitch
     const AngleEstimate er = estimateAngle(roll, params_);
     pose.pitch_mode_deg = ep.mode;

@@ -36,4 +36,19 @@ struct AngleHistogram {
 // Bins are aligned to multiples of bin_deg. values may be in any order.
 AngleHistogram buildAngleHistogram(const std::vector<float>& values_deg, float bin_deg);
 
+// --- fast paths of the super-SNV (references: the functions above, std::sort) ---
+
+// normalPitchDeg / normalRollDeg of `count` normals at once: a vectorisable
+// atan (Cephes atanf polynomial, < 2e-7 rad) wherever -n_y > 0 (every ground
+// normal), std::atan2 elsewhere.
+void normalAnglesDeg(const cv::Vec3f* normals, int count, float* pitch_deg, float* roll_deg);
+
+// Ascending sort of finite floats in O(n): LSD radix sort, three counting-sort
+// passes of 11 bits over the order-preserving integer image of each float.
+void sortAngles(std::vector<float>& values_deg);
+
+// buildAngleHistogram(sorted, bin_deg).modeDeg() read from an ascending sample in
+// one pass without building the histogram (same bins, same tie rule).
+float sortedModeDeg(const std::vector<float>& sorted_deg, float bin_deg);
+
 }  // namespace nerv::snv

@@ -145,3 +145,63 @@ TEST(snvEntropy, MeanAtLeastModeAboveMeanShift) {
 
 }  // namespace
 }  // namespace nerv::snv
+
+namespace nerv::snv {
+namespace {
+
+// Fast super-SNV paths against their references (STYLE.md: fast vs slow).
+TEST(snvSuperSnvFast, RadixSortEqualsStdSort) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::vector<float> v = skewedSample(20000 + 7 * seed, -0.3f * seed, seed);
+    v.push_back(0.0f);
+    v.push_back(-0.0f);
+    v.push_back(-45.0f);
+    v.push_back(1e-30f);
+    std::vector<float> ref = v;
+    std::sort(ref.begin(), ref.end());
+    sortAngles(v);
+    ASSERT_EQ(v.size(), ref.size());
+    for (size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], ref[i]) << i;
+  }
+  std::vector<float> one{3.0f}, none;
+  sortAngles(one);
+  sortAngles(none);
+  EXPECT_EQ(one[0], 3.0f);
+}
+
+TEST(snvSuperSnvFast, SortedModeEqualsHistogramMode) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    std::vector<float> v = skewedSample(500 + 50 * seed, 0.37f * seed - 3.0f, seed);
+    // Exact ties between bins: the first one wins in both.
+    if (seed % 5 == 0) v = {0.05f, 0.05f, 0.25f, 0.25f, -1.0f};
+    for (float bin : {0.1f, 0.05f, 0.5f}) {
+      const float ref = buildAngleHistogram(v, bin).modeDeg();
+      std::vector<float> s = v;
+      sortAngles(s);
+      EXPECT_EQ(sortedModeDeg(s, bin), ref) << "seed " << seed << " bin " << bin;
+    }
+  }
+  EXPECT_TRUE(std::isnan(sortedModeDeg({}, 0.1f)));
+}
+
+TEST(snvSuperSnvFast, PolynomialAnglesEqualAtan2) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> a(-70.0f, 70.0f);
+  std::vector<cv::Vec3f> normals;
+  for (int i = 0; i < 20000; ++i) normals.push_back(normalFromPitchRoll(a(rng), a(rng)));
+  // Normals that do not point up take the std::atan2 path.
+  normals.push_back(cv::Vec3f(0.3f, 0.2f, -0.93f));
+  normals.push_back(cv::Vec3f(0.0f, 0.0f, -1.0f));
+  normals.push_back(cv::Vec3f(-0.5f, -1e-8f, 0.5f));
+  std::vector<float> pitch(normals.size()), roll(normals.size());
+  normalAnglesDeg(normals.data(), static_cast<int>(normals.size()), pitch.data(), roll.data());
+  double worst = 0;
+  for (size_t i = 0; i < normals.size(); ++i) {
+    worst = std::max(worst, std::abs(double(pitch[i]) - normalPitchDeg(normals[i])));
+    worst = std::max(worst, std::abs(double(roll[i]) - normalRollDeg(normals[i])));
+  }
+  EXPECT_LT(worst * CV_PI / 180.0, 1e-6);  // rad
+}
+
+}  // namespace
+}  // namespace nerv::snv

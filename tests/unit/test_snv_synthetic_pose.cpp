@@ -1,0 +1,124 @@
+// Super-SNV camera pose on rendered synthetic sequences with exact pose ground
+// truth (nerv_synth in-process: render -> SGBM as in the brief -> process()).
+// Targets (issue 6): |pitch error| and |roll error| <= 0.1 deg at the 95th
+// percentile, height within 2 cm; the entropy lower on clean than on trapped frames.
+// MEASURED (docs/snv.md): height is within 2 cm, pitch p95 0.06-0.18 deg and roll
+// p95 0.26-0.52 deg are NOT within 0.1 deg, and the entropy does not separate
+// wet_road from urban. The bounds below guard today's accuracy against
+// regressions; the 0.1 deg target stays open (see docs/snv.md "Accuracy").
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "camera_pose.hpp"
+#include "renderer.hpp"
+#include "scene_yaml.hpp"
+#include "snv_extrinsic.hpp"
+#include "snv_test_scenes.hpp"
+#include "world_builder.hpp"
+
+namespace nerv::snv {
+namespace {
+
+struct FrameResult {
+  double pitch_err_deg, roll_err_deg, height_err_m, entropy_bits;
+  double trap_share;  // share of ground-region grid pixels inside a trap
+  bool valid;
+};
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * v.size())) - 1)];
+}
+
+// Renders `frames` frames of a preset (every `stride`-th), runs SGBM (block 5,
+// P1 200, P2 800, 128 levels, /16) and the estimator (no stixel ground model),
+// and compares with the rig's exact pose.
+std::vector<FrameResult> runScene(const std::string& preset, int frames, int stride) {
+  const synth::SceneSpec spec =
+      synth::loadScene(synth::resolveScenePath(preset, std::string(NERV_SOURCE_DIR) + "/config/scenes"));
+  const synth::World world = synth::buildWorld(spec);
+  const StereoCamera& cam = spec.camera.intrinsics;
+  SnvExtrinsicEstimator est{Params{}};
+  std::vector<FrameResult> out;
+  for (int k = 0; k < frames; ++k) {
+    const int f = k * stride;
+    const synth::CameraPose pose = synth::cameraPose(spec.camera, world, f);
+    const synth::RenderedFrame rf = synth::renderFrame(world, spec.camera, pose, f, spec.seed);
+    const cv::Mat d = test::sgbmDisparity(rf.left, rf.right);
+    const SnvResult r = est.process(d, cam, {}, GroundModel{});
+    FrameResult fr{};
+    fr.valid = r.pose.valid;
+    fr.pitch_err_deg = r.pose.instant_pitch_deg - pose.pitch_deg;
+    fr.roll_err_deg = r.pose.instant_roll_deg - pose.roll_deg;
+    fr.height_err_m = r.pose.instant_height_m - pose.height_m;
+    fr.entropy_bits = r.pose.entropy;
+    int in_region = 0, trapped = 0;
+    for (int v = static_cast<int>(cam.cy) + 10; v < cam.height; v += 4)
+      for (int u = 0; u < cam.width; u += 4) {
+        ++in_region;
+        trapped += rf.trap_mask.at<uchar>(v, u) != 0;
+      }
+    fr.trap_share = double(trapped) / in_region;
+    std::printf("%-17s frame %3d: true pitch %6.3f roll %6.3f h %.3f | err pitch %+.3f roll %+.3f "
+                "h %+.3f m | H %.2f bits conf %.2f samples %d traps %.1f%% %s\n",
+                preset.c_str(), f, pose.pitch_deg, pose.roll_deg, pose.height_m, fr.pitch_err_deg,
+                fr.roll_err_deg, fr.height_err_m, r.pose.entropy, r.pose.confidence, r.ground_samples,
+                100 * fr.trap_share, r.pose.status.c_str());
+    out.push_back(fr);
+  }
+  return out;
+}
+
+struct Summary {
+  double pitch95, roll95, height95, entropy_mean;
+};
+
+Summary summarise(const std::string& name, const std::vector<FrameResult>& res) {
+  std::vector<double> p, r, h, e;
+  for (const FrameResult& f : res) {
+    EXPECT_TRUE(f.valid) << name;
+    p.push_back(std::abs(f.pitch_err_deg));
+    r.push_back(std::abs(f.roll_err_deg));
+    h.push_back(std::abs(f.height_err_m));
+    e.push_back(f.entropy_bits);
+  }
+  const Summary s{percentile(p, 0.95), percentile(r, 0.95), percentile(h, 0.95),
+                  std::accumulate(e.begin(), e.end(), 0.0) / e.size()};
+  std::printf("%s: |pitch err| p95 %.3f deg, |roll err| p95 %.3f deg, |height err| p95 %.3f m, "
+              "mean entropy %.2f bits\n",
+              name.c_str(), s.pitch95, s.roll95, s.height95, s.entropy_mean);
+  ::testing::Test::RecordProperty(name + "_pitch_p95_deg", std::to_string(s.pitch95));
+  ::testing::Test::RecordProperty(name + "_roll_p95_deg", std::to_string(s.roll95));
+  ::testing::Test::RecordProperty(name + "_height_p95_m", std::to_string(s.height95));
+  return s;
+}
+
+TEST(snvSyntheticPose, PitchOscillationMeetsTargets) {
+  // 14 frames at 10 fps over the first 1.4 s: a full +-2 deg pitch swing with
+  // heave and roll, before the climb 50 m ahead enters the 30 m ground range.
+  const Summary s = summarise("pitch_oscillation", runScene("pitch_oscillation", 14, 1));
+  EXPECT_LE(s.pitch95, 0.25);  // target 0.1 (not met)
+  EXPECT_LE(s.roll95, 0.7);    // target 0.1 (not met)
+  EXPECT_LE(s.height95, 0.025);
+}
+
+TEST(snvSyntheticPose, FlatRoadAndWetRoad) {
+  const Summary urban = summarise("urban", runScene("urban", 6, 3));
+  EXPECT_LE(urban.pitch95, 0.1);
+  EXPECT_LE(urban.roll95, 0.4);  // target 0.1 (not met)
+  EXPECT_LE(urban.height95, 0.02);
+  // wet_road: the same street with puddles mirroring the scene (trap pixels on
+  // the road). Measured, not asserted: the window entropy of the pitch sample is
+  // ~4.8 bits on both (urban 4.83, wet_road 4.80), so it does not flag the traps.
+  const Summary wet = summarise("wet_road", runScene("wet_road", 6, 3));
+  EXPECT_LE(wet.height95, 0.06);
+}
+
+}  // namespace
+}  // namespace nerv::snv
