@@ -1,0 +1,160 @@
+#include "own_sgm.hpp"
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include "census_transform.hpp"
+#include "cost_volume.hpp"
+#include "lr_check.hpp"
+#include "path_aggregation.hpp"
+#include "speckle_filter.hpp"
+#include "winner_subpixel.hpp"
+
+namespace nerv::stereo {
+namespace {
+
+// Runs body(i) for i in [0, n) on n threads (the caller is one of them).
+template <class F>
+void runOnThreads(int n, F&& body) {
+  std::vector<std::thread> workers;
+  for (int i = 1; i < n; ++i) workers.emplace_back([&body, i] { body(i); });
+  body(0);
+  for (auto& w : workers) w.join();
+}
+
+struct StripeWorkspace {
+  std::vector<uint8_t> forward, backward;
+  std::vector<uint16_t> sum;
+  std::vector<int16_t> best_left, best_right, right_index;
+  std::vector<uint16_t> right_cost;
+  std::vector<uint64_t> reversed;
+};
+
+class OwnSgm : public StereoMatcher {
+ public:
+  OwnSgm(const Params& p, bool simd) : p_(p), simd_(simd && pathSimdAvailable()) {
+    checkParams(p_);
+    pen_.p1 = p.sgm_p1;
+    pen_.p2 = p.sgm_p2;
+  }
+
+  std::string name() const override { return "nerv_sgm"; }
+
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    CV_Assert(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.size() == right.size());
+    const int rows = left.rows, cols = left.cols, D = p_.num_disparities;
+    const int threads = std::max(1, std::min(p_.threads, rows));
+    const size_t row_bytes = static_cast<size_t>(cols) * D;
+    const size_t volume_bytes = row_bytes * rows;
+    if (cost_.size() != volume_bytes) {
+      cost_.assign(volume_bytes, 0);
+      down_.assign(volume_bytes, 0);
+      up_.assign(volume_bytes, 0);
+    }
+    workspaces_.resize(threads);
+    census_left_.create(left.size(), CV_32SC2);
+    census_right_.create(left.size(), CV_32SC2);
+    disparity.create(left.size(), CV_32FC1);
+    confidence.create(left.size(), CV_32FC1);
+
+    auto stripe = [&](int i, int& begin, int& end) {
+      begin = rows * i / threads;
+      end = rows * (i + 1) / threads;
+    };
+    // 1. census and costs
+    runOnThreads(threads, [&](int i) {
+      int begin, end;
+      stripe(i, begin, end);
+      // census rows the stripe's costs need are the stripe's own rows
+      censusTransform(left, p_.census_width, p_.census_height, census_left_, begin, end);
+      censusTransform(right, p_.census_width, p_.census_height, census_right_, begin, end);
+      for (int y = begin; y < end; ++y)
+        censusCostRow(census_left_.ptr<uint64_t>(y), census_right_.ptr<uint64_t>(y), cols,
+                      p_.min_disparity, D, cost_.data() + row_bytes * y, workspaces_[i].reversed);
+    });
+    // 2. vertical paths, one direction per thread
+    auto vertical = [&](bool downward) {
+      std::vector<uint8_t> mins_a(cols), mins_b(cols);
+      uint8_t* prev_min = mins_a.data();
+      uint8_t* out_min = mins_b.data();
+      std::vector<uint8_t>& volume = downward ? down_ : up_;
+      for (int i = 0; i < rows; ++i) {
+        const int y = downward ? i : rows - 1 - i;
+        const int y_prev = downward ? y - 1 : y + 1;
+        const uint8_t* prev = i == 0 ? nullptr : volume.data() + row_bytes * y_prev;
+        aggregateRowVertical(cost_.data() + row_bytes * y, prev, prev_min, cols, D, pen_, simd_,
+                             volume.data() + row_bytes * y, out_min);
+        std::swap(prev_min, out_min);
+      }
+    };
+    if (threads >= 2) {
+      std::thread down_thread([&] { vertical(true); });
+      vertical(false);
+      down_thread.join();
+    } else {
+      vertical(true);
+      vertical(false);
+    }
+    // 3. horizontal paths, sum, winners, left-right check
+    WinnerOptions options;
+    options.uniqueness_ratio = p_.uniqueness_ratio;
+    options.subpixel = p_.subpixel;
+    runOnThreads(threads, [&](int i) {
+      int begin, end;
+      stripe(i, begin, end);
+      StripeWorkspace& w = workspaces_[i];
+      w.forward.resize(row_bytes);
+      w.backward.resize(row_bytes);
+      w.sum.resize(row_bytes);
+      w.best_left.resize(cols);
+      w.best_right.resize(cols);
+      for (int y = begin; y < end; ++y) {
+        const size_t o = row_bytes * y;
+        aggregateRowHorizontal(cost_.data() + o, cols, D, pen_, simd_, w.forward.data(),
+                               w.backward.data());
+        const uint8_t* a = w.forward.data();
+        const uint8_t* b = w.backward.data();
+        const uint8_t* c = down_.data() + o;
+        const uint8_t* e = up_.data() + o;
+        uint16_t* s = w.sum.data();
+        for (size_t k = 0; k < row_bytes; ++k)
+          s[k] = static_cast<uint16_t>(a[k] + b[k] + c[k] + e[k]);
+        float* disp = disparity.ptr<float>(y);
+        float* conf = confidence.ptr<float>(y);
+        selectLeftWinners(s, cols, D, options, w.best_left.data(), disp, conf);
+        if (p_.lr_max_diff >= 0) {
+          selectRightWinners(s, cols, D, p_.min_disparity, w.best_right.data(), w.right_cost,
+                             w.right_index);
+          leftRightCheckRow(w.best_left.data(), w.best_right.data(), cols, p_.min_disparity,
+                            p_.lr_max_diff, disp, conf);
+        }
+        for (int x = 0; x < cols; ++x) {
+          // index -> pixels; disparity 0 (infinitely far) is "invalid" in nerv's encoding
+          const float d = disp[x] < 0.0f ? 0.0f : disp[x] + static_cast<float>(p_.min_disparity);
+          disp[x] = d > 0.0f ? d : 0.0f;
+          if (disp[x] == 0.0f) conf[x] = 0.0f;
+        }
+      }
+    });
+    removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range);
+    confidence.setTo(0.0f, disparity == 0.0f);
+  }
+
+ private:
+  Params p_;
+  bool simd_;
+  PathPenalties pen_;
+  cv::Mat census_left_, census_right_;
+  std::vector<uint8_t> cost_, down_, up_;
+  std::vector<StripeWorkspace> workspaces_;
+};
+
+}  // namespace
+
+std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd) {
+  return std::make_unique<OwnSgm>(params, use_simd);
+}
+
+}  // namespace nerv::stereo

@@ -1,0 +1,24 @@
+// nerv's own semi-global matcher ("nerv_sgm"): census 9x7 Hamming cost, 4
+// aggregation paths (left-right, right-left, top-down, bottom-up) in 8-bit
+// saturating SIMD, two threads, equiangular subpixel, uniqueness test,
+// left-right check and speckle removal.
+//
+// Passes over a W x H x D byte cost volume:
+//   1. census of both images and the cost volume (row stripes, all threads);
+//   2. top-down path and bottom-up path concurrently (one thread each), each
+//      stored as a byte volume;
+//   3. row stripes: horizontal paths, sum of the four in 16 bits, winners for
+//      the left and right views, left-right check.
+// Memory: 3 * W * H * D bytes (about 180 MB at 1242 x 375 x 128).
+#pragma once
+
+#include <memory>
+
+#include "stereo_matcher.hpp"
+
+namespace nerv::stereo {
+
+// use_simd = false runs the scalar aggregation (the SIMD-vs-scalar test).
+std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd = true);
+
+}  // namespace nerv::stereo
