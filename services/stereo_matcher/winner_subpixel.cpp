@@ -43,6 +43,33 @@ inline int argminFirst(const uint16_t* s, int D, uint16_t& min_value) {
   return best;
 }
 
+// Smallest cost with |d - d1| > 1 (s1 when there is none, D <= 3).
+inline int secondBest(const uint16_t* s, int D, int d1, uint16_t s1) {
+  uint16_t second = 0xffff;
+#ifdef __AVX2__
+  if (D % 16 == 0) {
+    // lanes d1 - 1 .. d1 + 1 are masked to 0xffff by an index compare
+    const __m256i lanes = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m256i lo = _mm256_set1_epi16(static_cast<short>(d1 - 2));
+    const __m256i hi = _mm256_set1_epi16(static_cast<short>(d1 + 2));
+    __m256i m = _mm256_set1_epi16(-1);
+    for (int d = 0; d < D; d += 16) {
+      const __m256i idx = _mm256_add_epi16(lanes, _mm256_set1_epi16(static_cast<short>(d)));
+      const __m256i near = _mm256_and_si256(_mm256_cmpgt_epi16(idx, lo), _mm256_cmpgt_epi16(hi, idx));
+      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + d));
+      m = _mm256_min_epu16(m, _mm256_or_si256(v, near));
+    }
+    const __m128i h = _mm_min_epu16(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
+    second = static_cast<uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(h)));
+  } else
+#endif
+  {
+    for (int d = 0; d < D; ++d)
+      if (d < d1 - 1 || d > d1 + 1) second = std::min(second, s[d]);
+  }
+  return second == 0xffff && D <= 3 ? s1 : second;
+}
+
 }  // namespace
 
 void selectLeftWinners(const uint16_t* S, int cols, int D, WinnerOptions opt, int16_t* best,
@@ -51,13 +78,7 @@ void selectLeftWinners(const uint16_t* S, int cols, int D, WinnerOptions opt, in
     const uint16_t* s = S + static_cast<size_t>(x) * D;
     uint16_t s1 = 0;
     const int d1 = argminFirst(s, D, s1);
-    // Best outside d1 - 1 .. d1 + 1, as one branch-free (vectorised) loop.
-    uint16_t second = 0xffff;
-    for (int d = 0; d < D; ++d) {
-      const uint16_t v = static_cast<unsigned>(d - d1 + 1) <= 2u ? uint16_t{0xffff} : s[d];
-      second = std::min(second, v);
-    }
-    const int s2 = second == 0xffff ? s1 : second;  // D <= 3: no competitor
+    const int s2 = secondBest(s, D, d1, s1);
     if (opt.uniqueness_ratio > 0 && s2 * (100 - opt.uniqueness_ratio) < s1 * 100) {
       best[x] = -1;
       disparity[x] = -1.0f;
