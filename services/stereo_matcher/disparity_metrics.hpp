@@ -15,8 +15,9 @@ namespace nerv::stereo {
 // KITTI devkit background interpolation on a CV_32F map (<= 0 invalid), in place:
 // per row, each invalid run between two valid pixels takes the smaller (farther)
 // of its two neighbours; runs touching the left/right border take the nearest
-// valid value of the row; then per column the same border extrapolation up and
-// down fills rows that had no valid pixel.
+// valid value of the row; then per column the first valid value is copied up
+// to the top and the last down to the bottom (an empty row between valid rows
+// stays invalid and is scored as wrong, as in the devkit).
 void interpolateBackground(cv::Mat& disparity);
 
 struct DisparityScore {
