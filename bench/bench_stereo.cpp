@@ -1,4 +1,4 @@
-// bench_stereo [--data DIR] [--runs N] [--threads N]: per algorithm, ms per
+// bench_stereo [--data DIR] [--runs N] [--threads N] [--only NAME]: per algorithm, ms per
 // frame (median of N runs, default 11) and the error against ground truth (D1
 // for KITTI, bad-2.0 for Middlebury), with each algorithm's time relative to
 // OpenCV SGBM 3-way (block 5, P1 8*25, P2 32*25, 128 levels) measured in the
@@ -22,12 +22,14 @@ int main(int argc, char** argv) {
   std::string data = std::string(NERV_SHARED_DATA) + "/kitti2015_000005";
   int runs = 11;
   int threads = 2;
+  std::string only;  // run the baseline and this algorithm only
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_stereo [--data DIR] [--runs N] [--threads N]\n");
+      std::fprintf(stderr, "usage: bench_stereo [--data DIR] [--runs N] [--threads N] [--only ALGORITHM]\n");
       return 2;
     }
   }
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
     p.algorithm = algorithm;
     p.downscale = downscale;
     p.threads = threads;
-    entries.push_back({label, p});
+    if (entries.empty() || only.empty() || only == algorithm) entries.push_back({label, p});
   };
   add("sgbm (baseline)", "sgbm");
   add("bm", "bm");

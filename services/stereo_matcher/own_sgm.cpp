@@ -1,6 +1,8 @@
 #include "own_sgm.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <thread>
 #include <vector>
 
@@ -59,6 +61,12 @@ class OwnSgm : public StereoMatcher {
     disparity.create(left.size(), CV_32FC1);
     confidence.create(left.size(), CV_32FC1);
 
+#ifdef NERV_SGM_PROFILE
+    auto t_prev = std::chrono::steady_clock::now();
+#define PROFILE_MARK(what) { auto t_now = std::chrono::steady_clock::now(); std::fprintf(stderr, "%s %.1f ms  ", what, std::chrono::duration<double, std::milli>(t_now - t_prev).count()); t_prev = t_now; }
+#else
+#define PROFILE_MARK(what)
+#endif
     auto stripe = [&](int i, int& begin, int& end) {
       begin = rows * i / threads;
       end = rows * (i + 1) / threads;
@@ -74,6 +82,7 @@ class OwnSgm : public StereoMatcher {
         censusCostRow(census_left_.ptr<uint64_t>(y), census_right_.ptr<uint64_t>(y), cols,
                       p_.min_disparity, D, cost_.data() + row_bytes * y, workspaces_[i].reversed);
     });
+    PROFILE_MARK("census+cost");
     // 2. vertical paths, one direction per thread
     auto vertical = [&](bool downward) {
       std::vector<uint8_t> mins_a(cols), mins_b(cols);
@@ -97,6 +106,7 @@ class OwnSgm : public StereoMatcher {
       vertical(true);
       vertical(false);
     }
+    PROFILE_MARK("vertical");
     // 3. horizontal paths, sum, winners, left-right check
     WinnerOptions options;
     options.uniqueness_ratio = p_.uniqueness_ratio;
@@ -114,22 +124,31 @@ class OwnSgm : public StereoMatcher {
         const size_t o = row_bytes * y;
         aggregateRowHorizontal(cost_.data() + o, cols, D, pen_, simd_, w.forward.data(),
                                w.backward.data());
-        const uint8_t* a = w.forward.data();
-        const uint8_t* b = w.backward.data();
-        const uint8_t* c = down_.data() + o;
-        const uint8_t* e = up_.data() + o;
-        uint16_t* s = w.sum.data();
-        for (size_t k = 0; k < row_bytes; ++k)
-          s[k] = static_cast<uint16_t>(a[k] + b[k] + c[k] + e[k]);
         float* disp = disparity.ptr<float>(y);
         float* conf = confidence.ptr<float>(y);
-        selectLeftWinners(s, cols, D, options, w.best_left.data(), disp, conf);
-        if (p_.lr_max_diff >= 0) {
-          selectRightWinners(s, cols, D, p_.min_disparity, w.best_right.data(), w.right_cost,
-                             w.right_index);
+        const bool check = p_.lr_max_diff >= 0;
+        if (simd_) {
+          const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(), down_.data() + o,
+                                           up_.data() + o};
+          selectWinnersFromPaths(paths, cols, D, p_.min_disparity, options, w.best_left.data(), disp,
+                                 conf, check ? w.best_right.data() : nullptr, w.sum, w.right_cost,
+                                 w.right_index);
+        } else {
+          const uint8_t* a = w.forward.data();
+          const uint8_t* b = w.backward.data();
+          const uint8_t* c = down_.data() + o;
+          const uint8_t* e = up_.data() + o;
+          uint16_t* s = w.sum.data();
+          for (size_t k = 0; k < row_bytes; ++k)
+            s[k] = static_cast<uint16_t>(a[k] + b[k] + c[k] + e[k]);
+          selectLeftWinners(s, cols, D, options, w.best_left.data(), disp, conf);
+          if (check)
+            selectRightWinners(s, cols, D, p_.min_disparity, w.best_right.data(), w.right_cost,
+                               w.right_index);
+        }
+        if (check)
           leftRightCheckRow(w.best_left.data(), w.best_right.data(), cols, p_.min_disparity,
                             p_.lr_max_diff, disp, conf);
-        }
         for (int x = 0; x < cols; ++x) {
           // index -> pixels; disparity 0 (infinitely far) is "invalid" in nerv's encoding
           const float d = disp[x] < 0.0f ? 0.0f : disp[x] + static_cast<float>(p_.min_disparity);
@@ -138,7 +157,17 @@ class OwnSgm : public StereoMatcher {
         }
       }
     });
-    removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range);
+    PROFILE_MARK("horizontal+winners");
+    // Speckles in two fixed halves (independent of the thread count, so the
+    // result is too): OpenCV's filterSpeckles is single-threaded and would
+    // otherwise be a fifth of the frame time.
+    runOnThreads(std::min(threads, 2), [&](int i) {
+      const int halves = std::min(threads, 2) == 2 ? 1 : 2;  // one thread: both halves in turn
+      for (int h = i; h < i + halves; ++h)
+        removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range, rows * h / 2,
+                       rows * (h + 1) / 2);
+    });
+    PROFILE_MARK("speckles");
     confidence.setTo(0.0f, disparity == 0.0f);
   }
 

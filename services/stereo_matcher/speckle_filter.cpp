@@ -13,4 +13,10 @@ void removeSpeckles(cv::Mat& disparity, int window_px, int range_px) {
   disparity.setTo(0.0f, fixed == 0);
 }
 
+void removeSpeckles(cv::Mat& disparity, int window_px, int range_px, int row_begin, int row_end) {
+  if (row_end <= row_begin) return;
+  cv::Mat stripe = disparity.rowRange(row_begin, row_end);
+  removeSpeckles(stripe, window_px, range_px);
+}
+
 }  // namespace nerv::stereo

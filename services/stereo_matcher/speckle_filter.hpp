@@ -11,4 +11,8 @@ namespace nerv::stereo {
 // whose neighbours differ by <= range_px are set to 0. window_px <= 0: no-op.
 void removeSpeckles(cv::Mat& disparity, int window_px, int range_px);
 
+// The same on the rows [row_begin, row_end) alone (a region cut by the stripe
+// border counts per stripe), so stripes can be filtered on separate threads.
+void removeSpeckles(cv::Mat& disparity, int window_px, int range_px, int row_begin, int row_end);
+
 }  // namespace nerv::stereo

@@ -44,23 +44,29 @@ inline int argminFirst(const uint16_t* s, int D, uint16_t& min_value) {
 }
 
 // Smallest cost with |d - d1| > 1 (s1 when there is none, D <= 3).
-inline int secondBest(const uint16_t* s, int D, int d1, uint16_t s1) {
+inline int secondBest(uint16_t* s, int D, int d1, uint16_t s1) {
   uint16_t second = 0xffff;
 #ifdef __AVX2__
   if (D % 16 == 0) {
-    // lanes d1 - 1 .. d1 + 1 are masked to 0xffff by an index compare
-    const __m256i lanes = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m256i lo = _mm256_set1_epi16(static_cast<short>(d1 - 2));
-    const __m256i hi = _mm256_set1_epi16(static_cast<short>(d1 + 2));
-    __m256i m = _mm256_set1_epi16(-1);
-    for (int d = 0; d < D; d += 16) {
-      const __m256i idx = _mm256_add_epi16(lanes, _mm256_set1_epi16(static_cast<short>(d)));
-      const __m256i near = _mm256_and_si256(_mm256_cmpgt_epi16(idx, lo), _mm256_cmpgt_epi16(hi, idx));
-      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + d));
-      m = _mm256_min_epu16(m, _mm256_or_si256(v, near));
+    // Mask d1 - 1 .. d1 + 1 in place (three scalar stores, restored below):
+    // cheaper than building an index mask for every vector.
+    uint16_t saved[3];
+    for (int i = 0; i < 3; ++i) {
+      const int d = d1 - 1 + i;
+      if (d >= 0 && d < D) {
+        saved[i] = s[d];
+        s[d] = 0xffff;
+      }
     }
+    __m256i m = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s));
+    for (int d = 16; d < D; d += 16)
+      m = _mm256_min_epu16(m, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + d)));
     const __m128i h = _mm_min_epu16(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
     second = static_cast<uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(h)));
+    for (int i = 0; i < 3; ++i) {
+      const int d = d1 - 1 + i;
+      if (d >= 0 && d < D) s[d] = saved[i];
+    }
   } else
 #endif
   {
@@ -72,24 +78,34 @@ inline int secondBest(const uint16_t* s, int D, int d1, uint16_t s1) {
 
 }  // namespace
 
-void selectLeftWinners(const uint16_t* S, int cols, int D, WinnerOptions opt, int16_t* best,
+namespace {
+
+// Decision for one pixel from its D aggregated costs.
+inline void decide(uint16_t* s, int D, int d1, uint16_t s1, WinnerOptions opt, int16_t& best,
+                   float& disparity, float& confidence) {
+  const int s2 = secondBest(s, D, d1, s1);
+  if (opt.uniqueness_ratio > 0 && s2 * (100 - opt.uniqueness_ratio) < s1 * 100) {
+    best = -1;
+    disparity = -1.0f;
+    confidence = 0.0f;
+    return;
+  }
+  best = static_cast<int16_t>(d1);
+  float offset = 0.0f;
+  if (opt.subpixel && d1 > 0 && d1 + 1 < D) offset = equiangularOffset(s[d1 - 1], s1, s[d1 + 1]);
+  disparity = static_cast<float>(d1) + offset;
+  confidence = s2 > 0 ? static_cast<float>(s2 - s1) / static_cast<float>(s2) : 0.0f;
+}
+
+}  // namespace
+
+void selectLeftWinners(uint16_t* S, int cols, int D, WinnerOptions opt, int16_t* best,
                        float* disparity, float* confidence) {
   for (int x = 0; x < cols; ++x) {
-    const uint16_t* s = S + static_cast<size_t>(x) * D;
+    uint16_t* s = S + static_cast<size_t>(x) * D;
     uint16_t s1 = 0;
     const int d1 = argminFirst(s, D, s1);
-    const int s2 = secondBest(s, D, d1, s1);
-    if (opt.uniqueness_ratio > 0 && s2 * (100 - opt.uniqueness_ratio) < s1 * 100) {
-      best[x] = -1;
-      disparity[x] = -1.0f;
-      confidence[x] = 0.0f;
-      continue;
-    }
-    best[x] = static_cast<int16_t>(d1);
-    float offset = 0.0f;
-    if (opt.subpixel && d1 > 0 && d1 + 1 < D) offset = equiangularOffset(s[d1 - 1], s1, s[d1 + 1]);
-    disparity[x] = static_cast<float>(d1) + offset;
-    confidence[x] = s2 > 0 ? static_cast<float>(s2 - s1) / static_cast<float>(s2) : 0.0f;
+    decide(s, D, d1, s1, opt, best[x], disparity[x], confidence[x]);
   }
 }
 
@@ -111,6 +127,77 @@ void selectRightWinners(const uint16_t* S, int cols, int D, int min_disparity, i
     }
   }
   for (int xr = 0; xr < cols; ++xr) best_right[xr] = index[cols - 1 - xr];
+}
+
+void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+                            WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
+                            int16_t* best_right, std::vector<uint16_t>& sum,
+                            std::vector<uint16_t>& cost, std::vector<int16_t>& index) {
+#ifdef __AVX2__
+  if (D % 32 == 0) {
+    sum.resize(D);
+    const int n = cols + min_disparity + D;
+    if (best_right) {
+      cost.assign(n, 0x7fff);  // sums are <= 4 * 255: signed 16-bit compares suffice
+      index.assign(n, -1);
+    }
+    const __m256i lanes = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    uint16_t* s = sum.data();
+    auto load = [](const uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); };
+    auto widen_lo = [](__m256i v) { return _mm256_cvtepu8_epi16(_mm256_castsi256_si128(v)); };
+    auto widen_hi = [](__m256i v) { return _mm256_cvtepu8_epi16(_mm256_extracti128_si256(v, 1)); };
+    for (int x = 0; x < cols; ++x) {
+      const size_t o = static_cast<size_t>(x) * D;
+      const size_t r = static_cast<size_t>(cols - 1 - x) + min_disparity;
+      __m256i vmin = _mm256_set1_epi16(-1);
+      for (int k = 0; k < D; k += 32) {
+        const __m256i a = load(paths[0] + o + k), b = load(paths[1] + o + k),
+                      c = load(paths[2] + o + k), e = load(paths[3] + o + k);
+        const __m256i halves[2] = {
+            _mm256_add_epi16(_mm256_add_epi16(widen_lo(a), widen_lo(b)),
+                             _mm256_add_epi16(widen_lo(c), widen_lo(e))),
+            _mm256_add_epi16(_mm256_add_epi16(widen_hi(a), widen_hi(b)),
+                             _mm256_add_epi16(widen_hi(c), widen_hi(e)))};
+        for (int h = 0; h < 2; ++h) {
+          const int kk = k + 16 * h;
+          const __m256i v = halves[h];
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(s + kk), v);
+          vmin = _mm256_min_epu16(vmin, v);
+          if (best_right) {
+            __m256i* cp = reinterpret_cast<__m256i*>(cost.data() + r + kk);
+            __m256i* ip = reinterpret_cast<__m256i*>(index.data() + r + kk);
+            const __m256i cur = _mm256_loadu_si256(cp);
+            const __m256i better = _mm256_cmpgt_epi16(cur, v);  // strict: ties keep the smaller d
+            _mm256_storeu_si256(cp, _mm256_min_epi16(cur, v));
+            const __m256i d = _mm256_add_epi16(lanes, _mm256_set1_epi16(static_cast<short>(kk)));
+            _mm256_storeu_si256(ip, _mm256_blendv_epi8(_mm256_loadu_si256(ip), d, better));
+          }
+        }
+      }
+      const __m128i hmin = _mm_min_epu16(_mm256_castsi256_si128(vmin), _mm256_extracti128_si256(vmin, 1));
+      const uint16_t s1 = static_cast<uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(hmin)));
+      const __m256i target = _mm256_set1_epi16(static_cast<short>(s1));
+      int d1 = 0;
+      for (int d = 0; d < D; d += 16) {
+        const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi16(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + d)), target)));
+        if (mask) {
+          d1 = d + __builtin_ctz(mask) / 2;
+          break;
+        }
+      }
+      decide(s, D, d1, s1, opt, best[x], disparity[x], confidence[x]);
+    }
+    if (best_right)
+      for (int xr = 0; xr < cols; ++xr) best_right[xr] = index[cols - 1 - xr];
+    return;
+  }
+#endif
+  sum.resize(static_cast<size_t>(cols) * D);
+  for (size_t k = 0; k < sum.size(); ++k)
+    sum[k] = static_cast<uint16_t>(paths[0][k] + paths[1][k] + paths[2][k] + paths[3][k]);
+  selectLeftWinners(sum.data(), cols, D, opt, best, disparity, confidence);
+  if (best_right) selectRightWinners(sum.data(), cols, D, min_disparity, best_right, cost, index);
 }
 
 }  // namespace nerv::stereo
