@@ -1,6 +1,7 @@
 #include "own_sgm.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -23,6 +24,17 @@ void runOnThreads(int n, F&& body) {
   for (int i = 1; i < n; ++i) workers.emplace_back([&body, i] { body(i); });
   body(0);
   for (auto& w : workers) w.join();
+}
+
+// Runs body(task, worker) for every task in [0, tasks) on up to `threads`
+// threads that pull tasks from a shared counter: on a computer shared with
+// other processes a slowed thread simply takes fewer tasks.
+template <class F>
+void parallelTasks(int threads, int tasks, F&& body) {
+  std::atomic<int> next{0};
+  runOnThreads(std::max(1, std::min(threads, tasks)), [&](int worker) {
+    for (int task; (task = next.fetch_add(1)) < tasks;) body(task, worker);
+  });
 }
 
 struct StripeWorkspace {
@@ -67,54 +79,51 @@ class OwnSgm : public StereoMatcher {
 #else
 #define PROFILE_MARK(what)
 #endif
-    auto stripe = [&](int i, int& begin, int& end) {
-      begin = rows * i / threads;
-      end = rows * (i + 1) / threads;
-    };
+    constexpr int kRowsPerTask = 8;
+    const int row_tasks = (rows + kRowsPerTask - 1) / kRowsPerTask;
     // 1. census and costs
-    runOnThreads(threads, [&](int i) {
-      int begin, end;
-      stripe(i, begin, end);
-      // census rows the stripe's costs need are the stripe's own rows
+    parallelTasks(threads, row_tasks, [&](int task, int worker) {
+      const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
+      // the costs of a row need the census of that row only
       censusTransform(left, p_.census_width, p_.census_height, census_left_, begin, end);
       censusTransform(right, p_.census_width, p_.census_height, census_right_, begin, end);
       for (int y = begin; y < end; ++y)
         censusCostRow(census_left_.ptr<uint64_t>(y), census_right_.ptr<uint64_t>(y), cols,
-                      p_.min_disparity, D, cost_.data() + row_bytes * y, workspaces_[i].reversed);
+                      p_.min_disparity, D, cost_.data() + row_bytes * y,
+                      workspaces_[worker].reversed);
     });
     PROFILE_MARK("census+cost");
-    // 2. vertical paths, one direction per thread
-    auto vertical = [&](bool downward) {
-      std::vector<uint8_t> mins_a(cols), mins_b(cols);
+    // 2. vertical paths: columns are independent, so each (direction, column
+    // band) is a task.
+    constexpr int kColumnBands = 8;
+    parallelTasks(threads, 2 * kColumnBands, [&](int task, int) {
+      const bool downward = task % 2 == 0;
+      const int band = task / 2;
+      const int x0 = cols * band / kColumnBands, x1 = cols * (band + 1) / kColumnBands;
+      const int n = x1 - x0;
+      if (n <= 0) return;
+      std::vector<uint8_t> mins_a(n), mins_b(n);
       uint8_t* prev_min = mins_a.data();
       uint8_t* out_min = mins_b.data();
       std::vector<uint8_t>& volume = downward ? down_ : up_;
+      const size_t x_offset = static_cast<size_t>(x0) * D;
       for (int i = 0; i < rows; ++i) {
         const int y = downward ? i : rows - 1 - i;
         const int y_prev = downward ? y - 1 : y + 1;
-        const uint8_t* prev = i == 0 ? nullptr : volume.data() + row_bytes * y_prev;
-        aggregateRowVertical(cost_.data() + row_bytes * y, prev, prev_min, cols, D, pen_, simd_,
-                             volume.data() + row_bytes * y, out_min);
+        const uint8_t* prev = i == 0 ? nullptr : volume.data() + row_bytes * y_prev + x_offset;
+        aggregateRowVertical(cost_.data() + row_bytes * y + x_offset, prev, prev_min, n, D, pen_,
+                             simd_, volume.data() + row_bytes * y + x_offset, out_min);
         std::swap(prev_min, out_min);
       }
-    };
-    if (threads >= 2) {
-      std::thread down_thread([&] { vertical(true); });
-      vertical(false);
-      down_thread.join();
-    } else {
-      vertical(true);
-      vertical(false);
-    }
+    });
     PROFILE_MARK("vertical");
     // 3. horizontal paths, sum, winners, left-right check
     WinnerOptions options;
     options.uniqueness_ratio = p_.uniqueness_ratio;
     options.subpixel = p_.subpixel;
-    runOnThreads(threads, [&](int i) {
-      int begin, end;
-      stripe(i, begin, end);
-      StripeWorkspace& w = workspaces_[i];
+    parallelTasks(threads, row_tasks, [&](int task, int worker) {
+      const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
+      StripeWorkspace& w = workspaces_[worker];
       w.forward.resize(row_bytes);
       w.backward.resize(row_bytes);
       w.sum.resize(row_bytes);
@@ -158,14 +167,12 @@ class OwnSgm : public StereoMatcher {
       }
     });
     PROFILE_MARK("horizontal+winners");
-    // Speckles in two fixed halves (independent of the thread count, so the
-    // result is too): OpenCV's filterSpeckles is single-threaded and would
-    // otherwise be a fifth of the frame time.
-    runOnThreads(std::min(threads, 2), [&](int i) {
-      const int halves = std::min(threads, 2) == 2 ? 1 : 2;  // one thread: both halves in turn
-      for (int h = i; h < i + halves; ++h)
-        removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range, rows * h / 2,
-                       rows * (h + 1) / 2);
+    // Speckles in two fixed halves (the result does not depend on the thread
+    // count): OpenCV's filterSpeckles is single-threaded and would otherwise
+    // be a tenth of the frame time.
+    parallelTasks(threads, 2, [&](int half, int) {
+      removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range, rows * half / 2,
+                     rows * (half + 1) / 2);
     });
     PROFILE_MARK("speckles");
     confidence.setTo(0.0f, disparity == 0.0f);

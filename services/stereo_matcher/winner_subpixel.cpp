@@ -150,6 +150,11 @@ void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int 
       const size_t o = static_cast<size_t>(x) * D;
       const size_t r = static_cast<size_t>(cols - 1 - x) + min_disparity;
       __m256i vmin = _mm256_set1_epi16(-1);
+      // the two vertical-path rows stream from the volumes in memory: fetch ahead
+      for (int k = 0; k < D; k += 64) {
+        _mm_prefetch(reinterpret_cast<const char*>(paths[2] + o + 4 * D + k), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(paths[3] + o + 4 * D + k), _MM_HINT_T0);
+      }
       for (int k = 0; k < D; k += 32) {
         const __m256i a = load(paths[0] + o + k), b = load(paths[1] + o + k),
                       c = load(paths[2] + o + k), e = load(paths[3] + o + k);
