@@ -134,27 +134,39 @@ void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int 
                             int16_t* best_right, std::vector<uint16_t>& sum,
                             std::vector<uint16_t>& cost, std::vector<int16_t>& index) {
 #ifdef __AVX2__
-  if (D % 32 == 0) {
+  if (D % 32 == 0 && D <= 512) {
     sum.resize(D);
-    const int n = cols + min_disparity + D;
+    // Right view without a scattered running minimum: the candidate (x, d) and
+    // (x - 1, d - 1) belong to the same right pixel, so the best candidate so
+    // far per right pixel is a D-vector shifted by one lane per left pixel:
+    // best_x[d] = min(S(x, d), best_{x-1}[d - 1]); lane D - 1 is final then.
+    // Sums are <= 4 * 255, so signed 16-bit compares suffice.
+    alignas(32) int16_t run_cost[512];
+    alignas(32) int16_t run_index[512];
     if (best_right) {
-      cost.assign(n, 0x7fff);  // sums are <= 4 * 255: signed 16-bit compares suffice
-      index.assign(n, -1);
+      std::fill(run_cost, run_cost + D, int16_t{0x7fff});
+      std::fill(run_index, run_index + D, int16_t{-1});
+      std::fill(best_right, best_right + cols, int16_t{-1});
     }
     const __m256i lanes = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m256i none = _mm256_set1_epi16(0x7fff), no_index = _mm256_set1_epi16(-1);
     uint16_t* s = sum.data();
-    auto load = [](const uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); };
+    auto load = [](const void* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); };
     auto widen_lo = [](__m256i v) { return _mm256_cvtepu8_epi16(_mm256_castsi256_si128(v)); };
     auto widen_hi = [](__m256i v) { return _mm256_cvtepu8_epi16(_mm256_extracti128_si256(v, 1)); };
+    // lane i of the result = lane i - 1 of cur (lane 0 = last lane of below)
+    auto shift_in = [](__m256i cur, __m256i below) {
+      return _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 14);
+    };
     for (int x = 0; x < cols; ++x) {
       const size_t o = static_cast<size_t>(x) * D;
-      const size_t r = static_cast<size_t>(cols - 1 - x) + min_disparity;
       __m256i vmin = _mm256_set1_epi16(-1);
       // the two vertical-path rows stream from the volumes in memory: fetch ahead
       for (int k = 0; k < D; k += 64) {
         _mm_prefetch(reinterpret_cast<const char*>(paths[2] + o + 4 * D + k), _MM_HINT_T0);
         _mm_prefetch(reinterpret_cast<const char*>(paths[3] + o + 4 * D + k), _MM_HINT_T0);
       }
+      __m256i below_cost = none, below_index = no_index;  // best_{x-1}[-1]: no candidate yet
       for (int k = 0; k < D; k += 32) {
         const __m256i a = load(paths[0] + o + k), b = load(paths[1] + o + k),
                       c = load(paths[2] + o + k), e = load(paths[3] + o + k);
@@ -169,15 +181,23 @@ void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int 
           _mm256_storeu_si256(reinterpret_cast<__m256i*>(s + kk), v);
           vmin = _mm256_min_epu16(vmin, v);
           if (best_right) {
-            __m256i* cp = reinterpret_cast<__m256i*>(cost.data() + r + kk);
-            __m256i* ip = reinterpret_cast<__m256i*>(index.data() + r + kk);
-            const __m256i cur = _mm256_loadu_si256(cp);
-            const __m256i better = _mm256_cmpgt_epi16(cur, v);  // strict: ties keep the smaller d
-            _mm256_storeu_si256(cp, _mm256_min_epi16(cur, v));
+            const __m256i prev_cost = load(run_cost + kk), prev_index = load(run_index + kk);
+            const __m256i shifted_cost = shift_in(prev_cost, below_cost);
+            const __m256i shifted_index = shift_in(prev_index, below_index);
+            below_cost = prev_cost;
+            below_index = prev_index;
+            // strict: an earlier (smaller d) candidate keeps a tie
+            const __m256i better = _mm256_cmpgt_epi16(shifted_cost, v);
             const __m256i d = _mm256_add_epi16(lanes, _mm256_set1_epi16(static_cast<short>(kk)));
-            _mm256_storeu_si256(ip, _mm256_blendv_epi8(_mm256_loadu_si256(ip), d, better));
+            _mm256_store_si256(reinterpret_cast<__m256i*>(run_cost + kk), _mm256_min_epi16(shifted_cost, v));
+            _mm256_store_si256(reinterpret_cast<__m256i*>(run_index + kk),
+                               _mm256_blendv_epi8(shifted_index, d, better));
           }
         }
+      }
+      if (best_right) {
+        const int xr = x - min_disparity - (D - 1);  // its last candidate was (x, D - 1)
+        if (xr >= 0) best_right[xr] = run_index[D - 1];
       }
       const __m128i hmin = _mm_min_epu16(_mm256_castsi256_si128(vmin), _mm256_extracti128_si256(vmin, 1));
       const uint16_t s1 = static_cast<uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(hmin)));
@@ -193,8 +213,13 @@ void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int 
       }
       decide(s, D, d1, s1, opt, best[x], disparity[x], confidence[x]);
     }
-    if (best_right)
-      for (int xr = 0; xr < cols; ++xr) best_right[xr] = index[cols - 1 - xr];
+    if (best_right)  // right pixels whose candidates ended at the row's last pixel
+      for (int d = 0; d + 1 < D; ++d) {
+        const int xr = cols - 1 - min_disparity - d;
+        if (xr >= 0 && xr < cols) best_right[xr] = run_index[d];
+      }
+    (void)cost;
+    (void)index;
     return;
   }
 #endif
