@@ -104,7 +104,10 @@ std::vector<EvalFrame> findEvalFrames(const std::string& dir) {
       if (entry.is_regular_file()) out[entry.path().stem().string()] = entry.path().string();
     return out;
   };
-  const auto left = stems("left"), right = stems("right"), gt = stems("disp_gt");
+  // plain layout, else KITTI stereo/object layout
+  const bool plain = fs::is_directory(fs::path(dir) / "left");
+  const auto left = stems(plain ? "left" : "image_2"), right = stems(plain ? "right" : "image_3"),
+             gt = stems(plain ? "disp_gt" : "disp_occ_0");
   std::vector<EvalFrame> frames;
   for (const auto& [name, path] : left) {
     const auto r = right.find(name);

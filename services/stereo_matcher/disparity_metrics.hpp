@@ -35,8 +35,10 @@ DisparityScore scoreBad(const cv::Mat& estimate, const cv::Mat& ground_truth, do
 // (via CV_Error) when the file cannot be read.
 cv::Mat loadGroundTruth(const std::string& path, std::string& kind);
 
-// Frames of a folder with left/, right/ and disp_gt/ (same stems, any image
-// extension); frames without ground truth are skipped. Sorted by name.
+// Frames of a folder with left/, right/ and disp_gt/ (plain layout) or
+// image_2/, image_3/ and disp_occ_0/ (KITTI stereo/object layout, as the
+// synthetic generator writes), same stems, any image extension; frames without
+// ground truth are skipped. Sorted by name.
 struct EvalFrame {
   std::string name, left_path, right_path, gt_path;
 };

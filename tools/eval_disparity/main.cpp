@@ -3,7 +3,8 @@
 //   nerv_eval_disparity --data DIR [--algorithm NAME ...] [--config FILE]
 //   nerv_eval_disparity --data DIR --log LOG [--channel DISPARITY]
 //
-// DIR holds left/, right/ and disp_gt/ (same stems). With --algorithm (repeat it
+// DIR holds left/, right/ and disp_gt/ (or KITTI image_2/, image_3/, disp_occ_0/,
+// as the synthetic generator writes; same stems). With --algorithm (repeat it
 // to compare; default: the configured or built-in algorithm) each frame is
 // matched here; with --log the DISPARITY events of an LCM log are scored, each
 // against the frame its header.frame_id names. KITTI ground truth (16-bit) is
