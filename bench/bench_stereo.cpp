@@ -1,5 +1,5 @@
 // bench_stereo [--data DIR] [--runs N] [--threads N] [--only NAME]: per algorithm, ms per
-// frame (median of N runs, default 11) and the error against ground truth (D1
+// frame (median of N interleaved runs, default 11) and the error against ground truth (D1
 // for KITTI, bad-2.0 for Middlebury), with each algorithm's time relative to
 // OpenCV SGBM 3-way (block 5, P1 8*25, P2 32*25, 128 levels) measured in the
 // same run. Default data: ../shared/data/kitti2015_000005.
@@ -7,7 +7,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <memory>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -63,24 +65,41 @@ int main(int argc, char** argv) {
   add("nerv_sgm", "nerv_sgm");
   add("nerv_sgm downscale 2", "nerv_sgm", 2);
 
-  double baseline_ms = 0;
-  std::printf("%-22s %9s %7s %8s %8s\n", "algorithm", "ms", "ratio", metric, "density");
-  for (const Entry& e : entries) {
-    auto matcher = StereoMatcher::create(e.params);
-    cv::Mat disparity, confidence;
-    matcher->compute(left, right, disparity, confidence);  // warm-up (allocations)
-    std::vector<double> ms;
-    for (int r = 0; r < runs; ++r) {
+  // Runs are interleaved (one frame of every algorithm per round) so that load
+  // from other processes on a shared computer hits all algorithms alike.
+  std::vector<std::unique_ptr<StereoMatcher>> matchers;
+  std::vector<cv::Mat> disparities(entries.size()), confidences(entries.size());
+  std::vector<std::vector<double>> ms(entries.size()), cpu_ms(entries.size());
+  // CPU time of the whole process (all threads): less sensitive to other
+  // processes than wall time, shows how much of the machine a frame takes.
+  auto cpu_now = [] {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+  };
+  for (size_t i = 0; i < entries.size(); ++i) {
+    matchers.push_back(StereoMatcher::create(entries[i].params));
+    matchers[i]->compute(left, right, disparities[i], confidences[i]);  // warm-up (allocations)
+  }
+  for (int r = 0; r < runs; ++r)
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const double c0 = cpu_now();
       const auto t0 = std::chrono::steady_clock::now();
-      matcher->compute(left, right, disparity, confidence);
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      matchers[i]->compute(left, right, disparities[i], confidences[i]);
+      ms[i].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      cpu_ms[i].push_back(cpu_now() - c0);
     }
-    std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
-    const double median = ms[ms.size() / 2];
-    if (baseline_ms == 0) baseline_ms = median;
-    const DisparityScore s = kind == "kitti" ? scoreD1(disparity, gt) : scoreBad(disparity, gt, 2.0);
-    std::printf("%-22s %9.1f %7.2f %7.2f%% %7.1f%%\n", e.label.c_str(), median, median / baseline_ms,
-                100.0 * s.error_rate, 100.0 * s.density);
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const double baseline_ms = median(ms[0]);
+  std::printf("%-22s %9s %7s %9s %8s %8s\n", "algorithm", "ms", "ratio", "cpu ms", metric, "density");
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const double m = median(ms[i]);
+    const DisparityScore s = kind == "kitti" ? scoreD1(disparities[i], gt) : scoreBad(disparities[i], gt, 2.0);
+    std::printf("%-22s %9.1f %7.2f %9.1f %7.2f%% %7.1f%%\n", entries[i].label.c_str(), m, m / baseline_ms,
+                median(cpu_ms[i]), 100.0 * s.error_rate, 100.0 * s.density);
   }
   return 0;
 }

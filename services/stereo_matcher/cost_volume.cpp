@@ -4,18 +4,18 @@
 
 namespace nerv::stereo {
 
-void censusCostRow(const uint64_t* left, const uint64_t* right, int cols, int min_disparity,
-                   int num_disparities, uint8_t* out, std::vector<uint64_t>& reversed) {
-  // Reversed right row: reversed[j] = right[cols - 1 - j] (column 0 beyond the
-  // edge), so the D right codes a left pixel is compared with are contiguous and
-  // in disparity order, and the inner loop vectorises (XOR + popcount + narrow).
-  const int n = cols + min_disparity + num_disparities;
-  reversed.resize(n);
-  for (int j = 0; j < n; ++j) reversed[j] = right[std::max(0, cols - 1 - j)];
-  for (int x = 0; x < cols; ++x) {
+void reverseCensusRow(const uint64_t* right, int cols, int min_disparity, int num_disparities,
+                      uint64_t* reversed) {
+  std::reverse_copy(right, right + cols, reversed);
+  std::fill(reversed + cols, reversed + cols + min_disparity + num_disparities, right[0]);
+}
+
+void censusCostRange(const uint64_t* left, const uint64_t* right_reversed, int cols, int x0, int x1,
+                     int min_disparity, int num_disparities, uint8_t* out) {
+  for (int x = x0; x < x1; ++x) {
     const uint64_t l = left[x];
-    const uint64_t* r = reversed.data() + (cols - 1 - x) + min_disparity;
-    uint8_t* c = out + static_cast<size_t>(x) * num_disparities;
+    const uint64_t* r = right_reversed + (cols - 1 - x) + min_disparity;
+    uint8_t* c = out + static_cast<size_t>(x - x0) * num_disparities;
     for (int d = 0; d < num_disparities; ++d)
       c[d] = static_cast<uint8_t>(__builtin_popcountll(l ^ r[d]));
   }

@@ -12,6 +12,7 @@
 #include "lr_check.hpp"
 #include "path_aggregation.hpp"
 #include "speckle_filter.hpp"
+#include "streaming_store.hpp"
 #include "winner_subpixel.hpp"
 
 namespace nerv::stereo {
@@ -38,11 +39,10 @@ void parallelTasks(int threads, int tasks, F&& body) {
 }
 
 struct StripeWorkspace {
-  std::vector<uint8_t> forward, backward;
+  std::vector<uint8_t> forward, backward, cost_row;
   std::vector<uint16_t> sum;
   std::vector<int16_t> best_left, best_right, right_index;
   std::vector<uint16_t> right_cost;
-  std::vector<uint64_t> reversed;
 };
 
 class OwnSgm : public StereoMatcher {
@@ -62,14 +62,12 @@ class OwnSgm : public StereoMatcher {
     const int threads = std::max(1, std::min(p_.threads, rows));
     const size_t row_bytes = static_cast<size_t>(cols) * D;
     const size_t volume_bytes = row_bytes * rows;
-    if (cost_.size() != volume_bytes) {
-      cost_.assign(volume_bytes, 0);
-      down_.assign(volume_bytes, 0);
-      up_.assign(volume_bytes, 0);
-    }
+    down_.resize(volume_bytes);
+    up_.resize(volume_bytes);
     workspaces_.resize(threads);
     census_left_.create(left.size(), CV_32SC2);
     census_right_.create(left.size(), CV_32SC2);
+    right_reversed_.create(rows, cols + p_.min_disparity + D, CV_32SC2);
     disparity.create(left.size(), CV_32FC1);
     confidence.create(left.size(), CV_32FC1);
 
@@ -81,18 +79,16 @@ class OwnSgm : public StereoMatcher {
 #endif
     constexpr int kRowsPerTask = 8;
     const int row_tasks = (rows + kRowsPerTask - 1) / kRowsPerTask;
-    // 1. census and costs
-    parallelTasks(threads, row_tasks, [&](int task, int worker) {
+    // 1. census of both views
+    parallelTasks(threads, row_tasks, [&](int task, int) {
       const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
-      // the costs of a row need the census of that row only
       censusTransform(left, p_.census_width, p_.census_height, census_left_, begin, end);
       censusTransform(right, p_.census_width, p_.census_height, census_right_, begin, end);
       for (int y = begin; y < end; ++y)
-        censusCostRow(census_left_.ptr<uint64_t>(y), census_right_.ptr<uint64_t>(y), cols,
-                      p_.min_disparity, D, cost_.data() + row_bytes * y,
-                      workspaces_[worker].reversed);
+        reverseCensusRow(census_right_.ptr<uint64_t>(y), cols, p_.min_disparity, D,
+                         right_reversed_.ptr<uint64_t>(y));
     });
-    PROFILE_MARK("census+cost");
+    PROFILE_MARK("census");
     // 2. vertical paths: columns are independent, so each (direction, column
     // band) is a task.
     constexpr int kColumnBands = 8;
@@ -102,19 +98,27 @@ class OwnSgm : public StereoMatcher {
       const int x0 = cols * band / kColumnBands, x1 = cols * (band + 1) / kColumnBands;
       const int n = x1 - x0;
       if (n <= 0) return;
-      std::vector<uint8_t> mins_a(n), mins_b(n);
+      // The path runs in two cache-resident row buffers; each finished row is
+      // streamed to the volume that pass 3 reads.
+      std::vector<uint8_t> mins_a(n), mins_b(n), row_a(static_cast<size_t>(n) * D),
+          row_b(static_cast<size_t>(n) * D), costs(static_cast<size_t>(n) * D);
       uint8_t* prev_min = mins_a.data();
       uint8_t* out_min = mins_b.data();
-      std::vector<uint8_t>& volume = downward ? down_ : up_;
+      uint8_t* prev_row = row_a.data();
+      uint8_t* out_row = row_b.data();
+      AlignedBytes& volume = downward ? down_ : up_;
       const size_t x_offset = static_cast<size_t>(x0) * D;
       for (int i = 0; i < rows; ++i) {
         const int y = downward ? i : rows - 1 - i;
-        const int y_prev = downward ? y - 1 : y + 1;
-        const uint8_t* prev = i == 0 ? nullptr : volume.data() + row_bytes * y_prev + x_offset;
-        aggregateRowVertical(cost_.data() + row_bytes * y + x_offset, prev, prev_min, n, D, pen_,
-                             simd_, volume.data() + row_bytes * y + x_offset, out_min);
+        censusCostRange(census_left_.ptr<uint64_t>(y), right_reversed_.ptr<uint64_t>(y), cols, x0,
+                        x1, p_.min_disparity, D, costs.data());
+        aggregateRowVertical(costs.data(), i == 0 ? nullptr : prev_row, prev_min, n, D, pen_, simd_,
+                             out_row, out_min);
+        copyStreaming(volume.data() + row_bytes * y + x_offset, out_row, static_cast<size_t>(n) * D);
         std::swap(prev_min, out_min);
+        std::swap(prev_row, out_row);
       }
+      streamingFence();
     });
     PROFILE_MARK("vertical");
     // 3. horizontal paths, sum, winners, left-right check
@@ -124,6 +128,7 @@ class OwnSgm : public StereoMatcher {
     parallelTasks(threads, row_tasks, [&](int task, int worker) {
       const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
       StripeWorkspace& w = workspaces_[worker];
+      w.cost_row.resize(row_bytes);
       w.forward.resize(row_bytes);
       w.backward.resize(row_bytes);
       w.sum.resize(row_bytes);
@@ -131,7 +136,9 @@ class OwnSgm : public StereoMatcher {
       w.best_right.resize(cols);
       for (int y = begin; y < end; ++y) {
         const size_t o = row_bytes * y;
-        aggregateRowHorizontal(cost_.data() + o, cols, D, pen_, simd_, w.forward.data(),
+        censusCostRange(census_left_.ptr<uint64_t>(y), right_reversed_.ptr<uint64_t>(y), cols, 0,
+                        cols, p_.min_disparity, D, w.cost_row.data());
+        aggregateRowHorizontal(w.cost_row.data(), cols, D, pen_, simd_, w.forward.data(),
                                w.backward.data());
         float* disp = disparity.ptr<float>(y);
         float* conf = confidence.ptr<float>(y);
@@ -182,8 +189,8 @@ class OwnSgm : public StereoMatcher {
   Params p_;
   bool simd_;
   PathPenalties pen_;
-  cv::Mat census_left_, census_right_;
-  std::vector<uint8_t> cost_, down_, up_;
+  cv::Mat census_left_, census_right_, right_reversed_;
+  AlignedBytes down_, up_;
   std::vector<StripeWorkspace> workspaces_;
 };
 

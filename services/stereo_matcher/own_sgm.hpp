@@ -3,15 +3,16 @@
 // saturating SIMD, two threads, equiangular subpixel, uniqueness test,
 // left-right check and speckle removal.
 //
-// Passes over a W x H x D byte cost volume, each split into tasks that the
-// threads pull from a shared counter:
-//   1. census of both images and the cost volume (tasks: bands of rows);
-//   2. top-down and bottom-up paths, each stored as a byte volume (tasks:
-//      direction x band of columns, as columns are independent);
-//   3. horizontal paths, sum of the four in 16 bits, winners for the left and
-//      right views, left-right check (tasks: bands of rows);
+// Passes, each split into tasks that the threads pull from a shared counter:
+//   1. census of both images (tasks: bands of rows);
+//   2. top-down and bottom-up paths over costs computed row by row, each
+//      streamed to a W x H x D byte volume (tasks: direction x band of
+//      columns, as columns are independent along vertical paths);
+//   3. costs of the row again, horizontal paths, sum of the four in 16 bits,
+//      winners for the left and right views, left-right check (tasks: bands
+//      of rows);
 //   4. speckle removal on the two image halves.
-// Memory: 3 * W * H * D bytes (about 180 MB at 1242 x 375 x 128).
+// Memory: 2 * W * H * D bytes (about 120 MB at 1242 x 375 x 128).
 #pragma once
 
 #include <memory>
