@@ -40,9 +40,8 @@ void parallelTasks(int threads, int tasks, F&& body) {
 
 struct StripeWorkspace {
   std::vector<uint8_t> forward, backward, cost_row;
-  std::vector<uint16_t> sum;
+  std::vector<uint8_t> sum, right_cost;
   std::vector<int16_t> best_left, best_right, right_index;
-  std::vector<uint16_t> right_cost;
 };
 
 class OwnSgm : public StereoMatcher {
@@ -143,24 +142,19 @@ class OwnSgm : public StereoMatcher {
         float* disp = disparity.ptr<float>(y);
         float* conf = confidence.ptr<float>(y);
         const bool check = p_.lr_max_diff >= 0;
+        const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(), down_.data() + o,
+                                         up_.data() + o};
         if (simd_) {
-          const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(), down_.data() + o,
-                                           up_.data() + o};
           selectWinnersFromPaths(paths, cols, D, p_.min_disparity, options, w.best_left.data(), disp,
                                  conf, check ? w.best_right.data() : nullptr, w.sum, w.right_cost,
                                  w.right_index);
-        } else {
-          const uint8_t* a = w.forward.data();
-          const uint8_t* b = w.backward.data();
-          const uint8_t* c = down_.data() + o;
-          const uint8_t* e = up_.data() + o;
-          uint16_t* s = w.sum.data();
-          for (size_t k = 0; k < row_bytes; ++k)
-            s[k] = static_cast<uint16_t>(a[k] + b[k] + c[k] + e[k]);
-          selectLeftWinners(s, cols, D, options, w.best_left.data(), disp, conf);
+        } else {  // the separate scalar steps (what the SIMD-vs-scalar test compares)
+          averagePaths(paths, row_bytes, w.sum.data());
+          selectLeftWinners(w.sum.data(), cols, D, options, w.best_left.data(), disp, conf);
           if (check)
-            selectRightWinners(s, cols, D, p_.min_disparity, w.best_right.data(), w.right_cost,
-                               w.right_index);
+            selectRightWinners(w.sum.data(), cols, D, p_.min_disparity, w.best_right.data(),
+                               w.right_cost, w.right_index);
+          if (options.subpixel) refineSubpixel(paths, cols, D, w.best_left.data(), disp);
         }
         if (check)
           leftRightCheckRow(w.best_left.data(), w.best_right.data(), cols, p_.min_disparity,

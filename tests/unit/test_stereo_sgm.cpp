@@ -10,6 +10,7 @@
 #include "census_transform.hpp"
 #include "own_sgm.hpp"
 #include "path_aggregation.hpp"
+#include "winner_subpixel.hpp"
 #include "stereo_matcher.hpp"
 
 using namespace nerv::stereo;
@@ -55,14 +56,15 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
   const auto cl = referenceCensus(left, p.census_width, p.census_height);
   const auto cr = referenceCensus(right, p.census_width, p.census_height);
   auto at = [&](int y, int x, int d) { return (static_cast<size_t>(y) * W + x) * D + d; };
-  std::vector<int> C(static_cast<size_t>(H) * W * D), S(C.size(), 0);
+  std::vector<int> C(static_cast<size_t>(H) * W * D);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
       for (int d = 0; d < D; ++d) {
         const int xr = std::max(0, x - p.min_disparity - d);
         C[at(y, x, d)] = __builtin_popcountll(cl[y * W + x] ^ cr[y * W + xr]);
       }
-  const int dirs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};  // (dx, dy)
+  const int dirs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};  // (dx, dy): ->, <-, down, up
+  std::vector<std::vector<int>> paths;
   for (const auto& dir : dirs) {
     std::vector<int> L(C.size());
     const int dx = dir[0], dy = dir[1];
@@ -85,10 +87,15 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
             v += m - prev_min;
           }
           L[at(y, x, d)] = v;
-          S[at(y, x, d)] += v;
         }
       }
+    paths.push_back(std::move(L));
   }
+  // winners work on the rounded average avg(avg(->, <-), avg(down, up))
+  auto avg = [](int a, int b) { return (a + b + 1) / 2; };
+  std::vector<int> S(C.size());
+  for (size_t k = 0; k < S.size(); ++k)
+    S[k] = avg(avg(paths[0][k], paths[1][k]), avg(paths[2][k], paths[3][k]));
   cv::Mat disparity(H, W, CV_32FC1);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
@@ -284,5 +291,36 @@ TEST(StereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
       EXPECT_GT(cv::countNonZero(cv::abs(disparity(bg) - s.bg) <= 1.5), 0.6 * bg.area())
           << name << " downscale " << downscale;
     }
+  }
+}
+
+TEST(StereoSgm, FusedWinnersEqualSeparateSteps) {
+  // random path costs with many ties; every D the fused loop takes, min_disparity > 0
+  std::mt19937 rng(3);
+  for (int D : {32, 96, 128}) {
+    const int cols = 300;
+    std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(static_cast<size_t>(cols) * D));
+    for (auto& r : rows)
+      for (auto& v : r) v = static_cast<uint8_t>(40 + rng() % 24);
+    const uint8_t* const paths[4] = {rows[0].data(), rows[1].data(), rows[2].data(), rows[3].data()};
+    WinnerOptions opt;
+    opt.uniqueness_ratio = 3;
+    std::vector<int16_t> best_a(cols), best_b(cols), right_a(cols), right_b(cols);
+    std::vector<float> disp_a(cols), disp_b(cols), conf_a(cols), conf_b(cols);
+    std::vector<uint8_t> sum, cost;
+    std::vector<int16_t> index;
+    selectWinnersFromPaths(paths, cols, D, 5, opt, best_a.data(), disp_a.data(), conf_a.data(),
+                           right_a.data(), sum, cost, index);
+    sum.resize(static_cast<size_t>(cols) * D);
+    averagePaths(paths, sum.size(), sum.data());
+    selectLeftWinners(sum.data(), cols, D, opt, best_b.data(), disp_b.data(), conf_b.data());
+    selectRightWinners(sum.data(), cols, D, 5, right_b.data(), cost, index);
+    refineSubpixel(paths, cols, D, best_b.data(), disp_b.data());
+    EXPECT_EQ(best_a, best_b) << D;
+    EXPECT_EQ(right_a, right_b) << D;
+    EXPECT_EQ(disp_a, disp_b) << D;
+    EXPECT_EQ(conf_a, conf_b) << D;
+    EXPECT_GT(std::count(best_a.begin(), best_a.end(), -1), 0) << "uniqueness test exercised";
+    EXPECT_GT(std::count_if(best_a.begin(), best_a.end(), [](int16_t b) { return b >= 0; }), 0);
   }
 }
