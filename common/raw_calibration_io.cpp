@@ -2,6 +2,7 @@
 
 #include <opencv2/core/persistence.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -27,6 +28,7 @@ void copyMat(const cv::Mat& m, std::array<double, N>& out, const std::string& wh
 }  // namespace
 
 RawStereoCalibration loadOpenCvStereoCalibration(const std::string& path, int width, int height) {
+  if (!std::filesystem::exists(path)) throw CalibrationError(path + ": cannot open");
   cv::FileStorage fs;
   try {
     fs.open(path, cv::FileStorage::READ);

@@ -123,20 +123,16 @@ void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_dispar
         break;
       }
     }
-    // second best: mask d1 - 1 .. d1 + 1 with 255 and take the minimum again
-    uint8_t saved[3];
-    for (int i = 0; i < 3; ++i) {
-      const int d = d1 - 1 + i;
-      if (d >= 0 && d < D) {
-        saved[i] = s[d];
-        s[d] = 255;
-      }
-    }
+    // second best: lanes d1 - 1 .. d1 + 1 masked to 255 by an index compare
+    // (in registers: scalar stores into s followed by vector loads would stall
+    // store forwarding)
+    const __m256i lo = _mm256_set1_epi8(static_cast<char>(d1 - 1));
+    const __m256i two = _mm256_set1_epi8(2);
     __m256i m2 = full;
-    for (int d = 0; d < D; d += 32) m2 = _mm256_min_epu8(m2, _mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)));
-    for (int i = 0; i < 3; ++i) {
-      const int d = d1 - 1 + i;
-      if (d >= 0 && d < D) s[d] = saved[i];
+    for (int d = 0; d < D; d += 32) {
+      const __m256i t = _mm256_sub_epi8(_mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(d))), lo);
+      const __m256i near = _mm256_cmpeq_epi8(_mm256_min_epu8(t, two), t);  // 0 <= d' - (d1 - 1) <= 2
+      m2 = _mm256_min_epu8(m2, _mm256_or_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)), near));
     }
     // all-255 except the masked lanes would read 255 here; the scalar
     // secondBest then also sees 255 (a real cost), so both agree
