@@ -46,7 +46,7 @@ class SgbmMatcher : public StereoMatcher {
 class BmMatcher : public StereoMatcher {
  public:
   explicit BmMatcher(const Params& p) : params_(p) {
-    bm_ = cv::StereoBM::create(p.num_disparities, std::max(5, p.block_size | 1));
+    bm_ = cv::StereoBM::create(p.num_disparities, p.bm_block_size);
     bm_->setMinDisparity(p.min_disparity);
     bm_->setUniquenessRatio(p.uniqueness_ratio);
     bm_->setSpeckleWindowSize(p.speckle_window_size);

@@ -26,6 +26,7 @@ class ReducedResolution : public StereoMatcher {
     p.min_disparity /= 2;
     p.speckle_window_size /= 4;
     p.block_size = std::max(3, (p.block_size / 2) | 1);
+    p.bm_block_size = std::max(5, (p.bm_block_size / 2) | 1);
     inner_ = createFullResolution(p);
   }
   void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,

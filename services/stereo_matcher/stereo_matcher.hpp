@@ -26,7 +26,8 @@ struct Params {
   int speckle_range = 2;           // max disparity variation within a region [px]
   int lr_max_diff = 1;             // left-right check tolerance [px]; < 0 disables it
   // OpenCV matchers (bm, sgbm*)
-  int block_size = 5;              // matching window (odd)
+  int block_size = 5;              // SGBM matching window (odd)
+  int bm_block_size = 15;          // StereoBM window (odd, 5..255): BM needs a larger one than SGBM
   int p1 = 8 * 25;                 // SGBM penalty for disparity changes of 1 (block 5, gray)
   int p2 = 32 * 25;                // SGBM penalty for larger changes
   double wls_lambda = 8000.0;      // sgbm_wls: smoothness strength of the WLS filter

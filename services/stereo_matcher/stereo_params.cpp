@@ -27,6 +27,9 @@ void checkParams(const Params& p, const std::string& path) {
                       " = 2 needs num_disparities a multiple of 32 and an even min_disparity");
   if (p.block_size % 2 == 0 || p.block_size < 1)
     throw ConfigError(key(path, "block_size") + " = " + std::to_string(p.block_size) + " is not odd");
+  if (p.bm_block_size % 2 == 0 || p.bm_block_size < 5)
+    throw ConfigError(key(path, "bm_block_size") + " = " + std::to_string(p.bm_block_size) +
+                      " is not odd and >= 5");
   if (p.p2 <= p.p1) throw ConfigError(key(path, "p2") + " must be larger than p1");
   if (p.census_width % 2 == 0 || p.census_height % 2 == 0 || p.census_width < 3 ||
       p.census_height < 1 || p.census_width * p.census_height - 1 > 64)
@@ -48,6 +51,7 @@ Params readParams(ConfigSection& c) {
   c.get("min_disparity", p.min_disparity, 0, 256);
   c.get("downscale", p.downscale, 1, 2);
   c.get("block_size", p.block_size, 1, 31);
+  c.get("bm_block_size", p.bm_block_size, 5, 255);
   c.get("p1", p.p1, 0, 100000);
   c.get("p2", p.p2, 0, 100000);
   c.get("uniqueness_ratio", p.uniqueness_ratio, 0, 100);
