@@ -1,4 +1,4 @@
-// Matching cost volume of the own SGM: Hamming distance between census codes,
+// Matching cost of the own SGM: Hamming distance between census codes,
 // C(x, y, d) = popcount(censusL(x, y) ^ censusR(x - min_disparity - d, y)),
 // d in [0, D). One byte per cost, layout [y][x][d] so a pixel's D costs are
 // contiguous (what the SIMD path aggregation loads). Right pixels left of the
@@ -16,11 +16,11 @@ namespace nerv::stereo {
 // right codes a left pixel x is compared with then start at
 // j = cols - 1 - x + min_disparity, contiguous and in disparity order, so the
 // cost loop vectorises (XOR + popcount + narrow).
-void reverseCensusRow(const uint64_t* right, int cols, int min_disparity, int num_disparities,
-                      uint64_t* reversed);
+void reverseCensusRow(const uint32_t* right, int cols, int min_disparity, int num_disparities,
+                      uint32_t* reversed);
 
 // Costs of columns [x0, x1) of one row: out has (x1 - x0) * D bytes.
-void censusCostRange(const uint64_t* left, const uint64_t* right_reversed, int cols, int x0, int x1,
+void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                      int min_disparity, int num_disparities, uint8_t* out);
 
 }  // namespace nerv::stereo

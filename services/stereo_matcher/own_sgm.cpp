@@ -64,9 +64,9 @@ class OwnSgm : public StereoMatcher {
     down_.resize(volume_bytes);
     up_.resize(volume_bytes);
     workspaces_.resize(threads);
-    census_left_.create(left.size(), CV_32SC2);
-    census_right_.create(left.size(), CV_32SC2);
-    right_reversed_.create(rows, cols + p_.min_disparity + D, CV_32SC2);
+    census_left_.create(left.size(), CV_32SC1);
+    census_right_.create(left.size(), CV_32SC1);
+    right_reversed_.create(rows, cols + p_.min_disparity + D, CV_32SC1);
     disparity.create(left.size(), CV_32FC1);
     confidence.create(left.size(), CV_32FC1);
 
@@ -84,8 +84,8 @@ class OwnSgm : public StereoMatcher {
       censusTransform(left, p_.census_width, p_.census_height, census_left_, begin, end);
       censusTransform(right, p_.census_width, p_.census_height, census_right_, begin, end);
       for (int y = begin; y < end; ++y)
-        reverseCensusRow(census_right_.ptr<uint64_t>(y), cols, p_.min_disparity, D,
-                         right_reversed_.ptr<uint64_t>(y));
+        reverseCensusRow(census_right_.ptr<uint32_t>(y), cols, p_.min_disparity, D,
+                         right_reversed_.ptr<uint32_t>(y));
     });
     PROFILE_MARK("census");
     // 2. vertical paths: columns are independent, so each (direction, column
@@ -109,7 +109,7 @@ class OwnSgm : public StereoMatcher {
       const size_t x_offset = static_cast<size_t>(x0) * D;
       for (int i = 0; i < rows; ++i) {
         const int y = downward ? i : rows - 1 - i;
-        censusCostRange(census_left_.ptr<uint64_t>(y), right_reversed_.ptr<uint64_t>(y), cols, x0,
+        censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, x0,
                         x1, p_.min_disparity, D, costs.data());
         aggregateRowVertical(costs.data(), i == 0 ? nullptr : prev_row, prev_min, n, D, pen_, simd_,
                              out_row, out_min);
@@ -135,7 +135,7 @@ class OwnSgm : public StereoMatcher {
       w.best_right.resize(cols);
       for (int y = begin; y < end; ++y) {
         const size_t o = row_bytes * y;
-        censusCostRange(census_left_.ptr<uint64_t>(y), right_reversed_.ptr<uint64_t>(y), cols, 0,
+        censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, 0,
                         cols, p_.min_disparity, D, w.cost_row.data());
         aggregateRowHorizontal(w.cost_row.data(), cols, D, pen_, simd_, w.forward.data(),
                                w.backward.data());

@@ -1,7 +1,7 @@
-// nerv's own semi-global matcher ("nerv_sgm"): census 9x7 Hamming cost, 4
-// aggregation paths (left-right, right-left, top-down, bottom-up) in 8-bit
-// saturating SIMD, two threads, equiangular subpixel, uniqueness test,
-// left-right check and speckle removal.
+// nerv's own semi-global matcher ("nerv_sgm"): center-symmetric census 9x7
+// Hamming cost, 4 aggregation paths (left-right, right-left, top-down,
+// bottom-up) in 8-bit saturating SIMD, two threads, equiangular subpixel,
+// uniqueness test, left-right check and speckle removal.
 //
 // Passes, each split into tasks that the threads pull from a shared counter:
 //   1. census of both images (tasks: bands of rows);

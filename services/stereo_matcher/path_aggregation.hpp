@@ -3,7 +3,7 @@
 //   L(p, d) = C(p, d) + min(L(p-r, d), L(p-r, d-1) + P1, L(p-r, d+1) + P1,
 //                           min_k L(p-r, k) + P2) - min_k L(p-r, k).
 // Subtracting the previous minimum bounds L by max C + P2, so with census
-// costs (<= 64) and P2 <= 255 - max C every value fits one byte and the SIMD
+// costs (<= 32 bits) and P2 <= 255 - max C every value fits one byte and the SIMD
 // path works on 32 disparities per AVX2 instruction with saturating uint8
 // adds — and stays exact (checked against the scalar code and a reference).
 #pragma once

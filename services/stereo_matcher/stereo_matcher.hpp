@@ -33,10 +33,10 @@ struct Params {
   double wls_lambda = 8000.0;      // sgbm_wls: smoothness strength of the WLS filter
   double wls_sigma = 1.5;          // sgbm_wls: edge sensitivity of the WLS filter (colour sigma)
   // nerv_sgm
-  int census_width = 9;            // census window (odd); width * height - 1 <= 64 bits
+  int census_width = 9;            // center-symmetric census window (odd); (w * h - 1) / 2 <= 32 bits
   int census_height = 7;
-  int sgm_p1 = 10;                 // penalty for a disparity change of 1 [census bits]
-  int sgm_p2 = 120;                // penalty for larger changes [census bits]; bits + p2 <= 255
+  int sgm_p1 = 7;                  // penalty for a disparity change of 1 [census bits]
+  int sgm_p2 = 90;                 // penalty for larger changes [census bits]; bits + p2 <= 255
   bool subpixel = true;            // equiangular fit on the aggregated cost; false: integer disparities
   int threads = 2;                 // worker threads of nerv_sgm (1 = run on the caller's thread)
 };

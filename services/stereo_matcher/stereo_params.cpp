@@ -32,11 +32,11 @@ void checkParams(const Params& p, const std::string& path) {
                       " is not odd and >= 5");
   if (p.p2 <= p.p1) throw ConfigError(key(path, "p2") + " must be larger than p1");
   if (p.census_width % 2 == 0 || p.census_height % 2 == 0 || p.census_width < 3 ||
-      p.census_height < 1 || p.census_width * p.census_height - 1 > 64)
+      p.census_height < 1 || (p.census_width * p.census_height - 1) / 2 > 32)
     throw ConfigError(key(path, "census_width") + " x census_height = " +
                       std::to_string(p.census_width) + "x" + std::to_string(p.census_height) +
-                      " must be odd and hold at most 64 comparisons");
-  const int max_cost = p.census_width * p.census_height - 1;
+                      " must be odd and hold at most 32 symmetric pairs");
+  const int max_cost = (p.census_width * p.census_height - 1) / 2;
   if (p.sgm_p1 < 0 || p.sgm_p2 <= p.sgm_p1 || max_cost + p.sgm_p2 > 255)
     throw ConfigError(key(path, "sgm_p2") + " = " + std::to_string(p.sgm_p2) +
                       " must exceed sgm_p1 and keep census bits (" + std::to_string(max_cost) +

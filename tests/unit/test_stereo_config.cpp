@@ -57,8 +57,9 @@ TEST(StereoConfig, BadValuesNameTheKey) {
   EXPECT_NE(configError("{num_disparities: -32}").find("stereo_matcher.num_disparities"), std::string::npos);
   EXPECT_NE(configError("{num_disparities: 40}").find("stereo_matcher.num_disparities"), std::string::npos);
   EXPECT_NE(configError("{algorithm: magic}").find("stereo_matcher.algorithm"), std::string::npos);
-  EXPECT_NE(configError("{sgm_p2: 250}").find("stereo_matcher.sgm_p2"), std::string::npos);
+  EXPECT_NE(configError("{sgm_p2: 230}").find("stereo_matcher.sgm_p2"), std::string::npos);
   EXPECT_NE(configError("{downscale: 3}").find("stereo_matcher.downscale"), std::string::npos);
+  EXPECT_NE(configError("{census_width: 9, census_height: 9}").find("stereo_matcher.census_width"), std::string::npos);
   EXPECT_NE(configError("{census_width: 8}").find("stereo_matcher.census_width"), std::string::npos);
   stereo::Params p;
   p.algorithm = "magic";

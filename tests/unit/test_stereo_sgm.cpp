@@ -35,17 +35,17 @@ cv::Mat shifted(const cv::Mat& in, double dx) {
 }
 
 // ---- reference: direct transcription of the definitions, int arithmetic ----
-std::vector<uint64_t> referenceCensus(const cv::Mat& img, int ww, int wh) {
-  std::vector<uint64_t> out(img.total(), 0);
+std::vector<uint32_t> referenceCensus(const cv::Mat& img, int ww, int wh) {
+  // center-symmetric: pairs (o, -o) for the offsets o before the centre, row-major
+  std::vector<uint32_t> out(img.total(), 0);
   const int rw = ww / 2, rh = wh / 2;
   for (int y = rh; y < img.rows - rh; ++y)
     for (int x = rw; x < img.cols - rw; ++x) {
-      uint64_t bits = 0;
-      for (int dy = -rh; dy <= rh; ++dy)
-        for (int dx = -rw; dx <= rw; ++dx) {
-          if (dx == 0 && dy == 0) continue;
-          bits = bits * 2 + (img.at<uint8_t>(y + dy, x + dx) < img.at<uint8_t>(y, x) ? 1 : 0);
-        }
+      uint32_t bits = 0;
+      for (int i = 0; i < (ww * wh) / 2; ++i) {
+        const int dy = i / ww - rh, dx = i % ww - rw;
+        bits = bits * 2 + (img.at<uint8_t>(y + dy, x + dx) < img.at<uint8_t>(y - dy, x - dx) ? 1 : 0);
+      }
       out[y * img.cols + x] = bits;
     }
   return out;
@@ -61,7 +61,7 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
     for (int x = 0; x < W; ++x)
       for (int d = 0; d < D; ++d) {
         const int xr = std::max(0, x - p.min_disparity - d);
-        C[at(y, x, d)] = __builtin_popcountll(cl[y * W + x] ^ cr[y * W + xr]);
+        C[at(y, x, d)] = __builtin_popcount(cl[y * W + x] ^ cr[y * W + xr]);
       }
   const int dirs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};  // (dx, dy): ->, <-, down, up
   std::vector<std::vector<int>> paths;
@@ -151,7 +151,7 @@ TEST(StereoSgm, CensusMatchesReference) {
   censusTransform(img, 9, 7, census);
   const auto ref = referenceCensus(img, 9, 7);
   for (int y = 0; y < img.rows; ++y)
-    for (int x = 0; x < img.cols; ++x) ASSERT_EQ(census.ptr<uint64_t>(y)[x], ref[y * img.cols + x]) << x << "," << y;
+    for (int x = 0; x < img.cols; ++x) ASSERT_EQ(census.ptr<uint32_t>(y)[x], ref[y * img.cols + x]) << x << "," << y;
 }
 
 TEST(StereoSgm, MatchesReferenceIntegerDisparities) {
@@ -177,9 +177,9 @@ TEST(StereoSgm, PathStepSimdEqualsScalar) {
   for (int trial = 0; trial < 2000; ++trial) {
     const PathPenalties pen{static_cast<int>(rng() % 20), 0};
     PathPenalties q = pen;
-    q.p2 = pen.p1 + 1 + static_cast<int>(rng() % (255 - 64 - pen.p1));
-    for (auto& c : cost) c = rng() % 65;
-    for (auto& v : prev) v = rng() % (65 + q.p2);  // any reachable path value, up to max C + P2
+    q.p2 = pen.p1 + 1 + static_cast<int>(rng() % (255 - 32 - pen.p1));
+    for (auto& c : cost) c = rng() % 33;
+    for (auto& v : prev) v = rng() % (33 + q.p2);  // any reachable path value, up to max C + P2
     const uint8_t prev_min = *std::min_element(prev.begin(), prev.end());
     const uint8_t ma = pathStepScalar(cost.data(), prev.data(), prev_min, a.data(), D, q);
     const uint8_t mb = pathStepSimd(cost.data(), prev.data(), prev_min, b.data(), D, q);
