@@ -39,7 +39,7 @@ void parallelTasks(int threads, int tasks, F&& body) {
 }
 
 struct StripeWorkspace {
-  std::vector<uint8_t> forward, backward, cost_row;
+  std::vector<uint8_t> forward[2], backward[2], cost_row[2];
   std::vector<uint8_t> sum, right_cost;
   std::vector<int16_t> best_left, best_right, right_index;
 };
@@ -127,23 +127,36 @@ class OwnSgm : public StereoMatcher {
     parallelTasks(threads, row_tasks, [&](int task, int worker) {
       const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
       StripeWorkspace& w = workspaces_[worker];
-      w.cost_row.resize(row_bytes);
-      w.forward.resize(row_bytes);
-      w.backward.resize(row_bytes);
+      for (int j = 0; j < 2; ++j) {
+        w.cost_row[j].resize(row_bytes);
+        w.forward[j].resize(row_bytes);
+        w.backward[j].resize(row_bytes);
+      }
       w.sum.resize(row_bytes);
       w.best_left.resize(cols);
       w.best_right.resize(cols);
       for (int y = begin; y < end; ++y) {
         const size_t o = row_bytes * y;
-        censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, 0,
-                        cols, p_.min_disparity, D, w.cost_row.data());
-        aggregateRowHorizontal(w.cost_row.data(), cols, D, pen_, simd_, w.forward.data(),
-                               w.backward.data());
+        // rows are taken in pairs: their horizontal paths run interleaved
+        const int j = (y - begin) % 2;
+        if (j == 0) {
+          const int pair = std::min(2, end - y);
+          for (int k = 0; k < pair; ++k)
+            censusCostRange(census_left_.ptr<uint32_t>(y + k), right_reversed_.ptr<uint32_t>(y + k),
+                            cols, 0, cols, p_.min_disparity, D, w.cost_row[k].data());
+          if (pair == 2)
+            aggregateRowsHorizontal2(w.cost_row[0].data(), w.cost_row[1].data(), cols, D, pen_, simd_,
+                                     w.forward[0].data(), w.backward[0].data(), w.forward[1].data(),
+                                     w.backward[1].data());
+          else
+            aggregateRowHorizontal(w.cost_row[0].data(), cols, D, pen_, simd_, w.forward[0].data(),
+                                   w.backward[0].data());
+        }
         float* disp = disparity.ptr<float>(y);
         float* conf = confidence.ptr<float>(y);
         const bool check = p_.lr_max_diff >= 0;
-        const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(), down_.data() + o,
-                                         up_.data() + o};
+        const uint8_t* const paths[4] = {w.forward[j].data(), w.backward[j].data(),
+                                         down_.data() + o, up_.data() + o};
         if (simd_) {
           selectWinnersFromPaths(paths, cols, D, p_.min_disparity, options, w.best_left.data(), disp,
                                  conf, check ? w.best_right.data() : nullptr, w.sum, w.right_cost,

@@ -47,6 +47,16 @@ inline void decide(int d1, int s1, int s2, WinnerOptions opt, int16_t& best, flo
   confidence = s2 > 0 ? static_cast<float>(s2 - s1) / static_cast<float>(s2) : 0.0f;
 }
 
+// Subpixel offset from the exact path sum at d1 - 1, d1, d1 + 1 (o: the
+// pixel's offset in the path rows). The averaged minimum may sit a rounding
+// step off the exact one: fit only when d1 is a minimum of the exact sum too.
+inline void refinePixel(const uint8_t* const p[4], size_t o, int d1, float& disparity) {
+  auto sum = [&](size_t k) { return p[0][k] + p[1][k] + p[2][k] + p[3][k]; };
+  const size_t k = o + d1;
+  const int a = sum(k - 1), b = sum(k), c = sum(k + 1);
+  if (b <= a && b <= c) disparity = static_cast<float>(d1) + equiangularOffset(a, b, c);
+}
+
 #ifdef __AVX2__
 inline __m256i load(const void* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
 
@@ -138,6 +148,7 @@ void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_dispar
     // secondBest then also sees 255 (a real cost), so both agree
     const int s2 = D <= 3 ? s1 : horizontalMin(m2);
     decide(d1, s1, s2, opt, best[x], disparity[x], confidence[x]);
+    if (opt.subpixel && best[x] > 0 && best[x] + 1 < D) refinePixel(paths, o, d1, disparity[x]);
   }
   if (best_right)  // right pixels whose candidates ended at the row's last pixel
     for (int d = 0; d + 1 < D; ++d) {
@@ -182,16 +193,8 @@ void selectRightWinners(const uint8_t* S, int cols, int D, int min_disparity, in
 
 void refineSubpixel(const uint8_t* const p[4], int cols, int D, const int16_t* best,
                     float* disparity) {
-  for (int x = 0; x < cols; ++x) {
-    const int d1 = best[x];
-    if (d1 <= 0 || d1 + 1 >= D) continue;
-    const size_t o = static_cast<size_t>(x) * D + d1;
-    auto sum = [&](size_t k) { return p[0][k] + p[1][k] + p[2][k] + p[3][k]; };
-    const int a = sum(o - 1), b = sum(o), c = sum(o + 1);
-    // the averaged minimum may sit a rounding step off the exact one: fit only
-    // when d1 is a minimum of the exact sum too
-    if (b <= a && b <= c) disparity[x] = static_cast<float>(d1) + equiangularOffset(a, b, c);
-  }
+  for (int x = 0; x < cols; ++x)
+    if (best[x] > 0 && best[x] + 1 < D) refinePixel(p, static_cast<size_t>(x) * D, best[x], disparity[x]);
 }
 
 void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int min_disparity,
@@ -210,8 +213,8 @@ void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int 
     averagePaths(paths, sum.size(), sum.data());
     selectLeftWinners(sum.data(), cols, D, opt, best, disparity, confidence);
     if (best_right) selectRightWinners(sum.data(), cols, D, min_disparity, best_right, cost, index);
+    if (opt.subpixel) refineSubpixel(paths, cols, D, best, disparity);
   }
-  if (opt.subpixel) refineSubpixel(paths, cols, D, best, disparity);
 }
 
 }  // namespace nerv::stereo
