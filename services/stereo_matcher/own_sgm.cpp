@@ -185,11 +185,11 @@ class OwnSgm : public StereoMatcher {
     // count): OpenCV's filterSpeckles is single-threaded and would otherwise
     // be a tenth of the frame time.
     parallelTasks(threads, 2, [&](int half, int) {
-      removeSpeckles(disparity, p_.speckle_window_size, p_.speckle_range, rows * half / 2,
-                     rows * (half + 1) / 2);
+      removeSpeckles(disparity, &confidence, p_.speckle_window_size, p_.speckle_range,
+                     rows * half / 2, rows * (half + 1) / 2, speckle_scratch_[half]);
     });
     PROFILE_MARK("speckles");
-    confidence.setTo(0.0f, disparity == 0.0f);
+    PROFILE_MARK("final");
   }
 
  private:
@@ -199,6 +199,7 @@ class OwnSgm : public StereoMatcher {
   cv::Mat census_left_, census_right_, right_reversed_;
   AlignedBytes down_, up_;
   std::vector<StripeWorkspace> workspaces_;
+  SpeckleScratch speckle_scratch_[2];
 };
 
 }  // namespace
