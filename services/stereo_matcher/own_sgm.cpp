@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <thread>
 #include <vector>
 
 #include "census_transform.hpp"
@@ -18,13 +17,17 @@
 namespace nerv::stereo {
 namespace {
 
-// Runs body(i) for i in [0, n) on n threads (the caller is one of them).
+// Runs body(i) for i in [0, n), in parallel on OpenCV's thread pool (kept
+// alive between frames, unlike threads started per pass).
 template <class F>
 void runOnThreads(int n, F&& body) {
-  std::vector<std::thread> workers;
-  for (int i = 1; i < n; ++i) workers.emplace_back([&body, i] { body(i); });
-  body(0);
-  for (auto& w : workers) w.join();
+  if (n <= 1) {
+    body(0);
+    return;
+  }
+  cv::parallel_for_(cv::Range(0, n), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i) body(i);
+  }, n);
 }
 
 // Runs body(task, worker) for every task in [0, tasks) on up to `threads`

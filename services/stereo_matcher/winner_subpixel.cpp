@@ -90,11 +90,6 @@ void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_dispar
   };
   for (int x = 0; x < cols; ++x) {
     const size_t o = static_cast<size_t>(x) * D;
-    // the two vertical-path rows stream from the volumes in memory: fetch ahead
-    for (int k = 0; k < D; k += 64) {
-      _mm_prefetch(reinterpret_cast<const char*>(paths[2] + o + 4 * D + k), _MM_HINT_T0);
-      _mm_prefetch(reinterpret_cast<const char*>(paths[3] + o + 4 * D + k), _MM_HINT_T0);
-    }
     __m256i vmin = full;
     __m256i below_cost = full, below_index = full;  // run_{x-1}[-1]: no candidate
     for (int k = 0; k < D; k += 32) {
