@@ -115,8 +115,7 @@ class OwnSgm : public StereoMatcher {
         censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, x0,
                         x1, p_.min_disparity, D, costs.data());
         aggregateRowVertical(costs.data(), i == 0 ? nullptr : prev_row, prev_min, n, D, pen_, simd_,
-                             out_row, out_min);
-        copyStreaming(volume.data() + row_bytes * y + x_offset, out_row, static_cast<size_t>(n) * D);
+                             out_row, out_min, volume.data() + row_bytes * y + x_offset);
         std::swap(prev_min, out_min);
         std::swap(prev_row, out_row);
       }

@@ -1,6 +1,7 @@
 #include "path_aggregation.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
 #ifdef __AVX2__
@@ -17,9 +18,12 @@ inline uint8_t saturate(int v) { return static_cast<uint8_t>(std::min(v, 255)); 
 // The AVX2 step. D costs of the previous pixel sit in D/32 registers; the
 // d-1 / d+1 neighbours are the register shifted by one byte across the
 // 128-bit lanes (permute2x128 + alignr), with 255 shifted in at both ends.
+// stream (32-byte aligned, or nullptr): a second copy of out written with
+// non-temporal stores (the vertical paths' volume).
 __attribute__((always_inline)) inline uint8_t stepAvx2(const uint8_t* cost, const uint8_t* prev,
                                                        uint8_t prev_min, uint8_t* out, int D,
-                                                       __m256i p1v, __m256i p2v) {
+                                                       __m256i p1v, __m256i p2v,
+                                                       uint8_t* stream = nullptr) {
   const __m256i minv = _mm256_set1_epi8(static_cast<char>(prev_min));
   const __m256i jump = _mm256_adds_epu8(minv, p2v);
   const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
@@ -39,6 +43,7 @@ __attribute__((always_inline)) inline uint8_t stepAvx2(const uint8_t* cost, cons
     const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(cost + k));
     const __m256i v = _mm256_adds_epu8(_mm256_sub_epi8(m, minv), c);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + k), v);
+    if (stream) _mm256_stream_si256(reinterpret_cast<__m256i*>(stream + k), v);
     running = _mm256_min_epu8(running, v);
     below = cur;
     cur = above;
@@ -148,7 +153,7 @@ void aggregateRowsHorizontal2(const uint8_t* cost0, const uint8_t* cost1, int co
 
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
                           int cols, int D, PathPenalties pen, bool simd, uint8_t* out_row,
-                          uint8_t* out_min) {
+                          uint8_t* out_min, uint8_t* stream_row) {
   std::vector<uint8_t> zeros;
   if (!prev_row) zeros.assign(D, 0);
 #ifdef __AVX2__
@@ -157,8 +162,9 @@ void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const ui
     const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
     for (int x = 0; x < cols; ++x) {
       const size_t o = static_cast<size_t>(x) * D;
-      out_min[x] = prev_row ? stepAvx2(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v)
-                            : stepAvx2(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v);
+      uint8_t* stream = stream_row ? stream_row + o : nullptr;
+      out_min[x] = prev_row ? stepAvx2(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v, stream)
+                            : stepAvx2(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v, stream);
     }
     return;
   }
@@ -168,6 +174,7 @@ void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const ui
     out_min[x] = prev_row ? pathStepScalar(cost + o, prev_row + o, prev_min[x], out_row + o, D, pen)
                           : pathStepScalar(cost + o, zeros.data(), 0, out_row + o, D, pen);
   }
+  if (stream_row) std::memcpy(stream_row, out_row, static_cast<size_t>(cols) * D);
 }
 
 }  // namespace nerv::stereo

@@ -41,8 +41,10 @@ void aggregateRowsHorizontal2(const uint8_t* cost0, const uint8_t* cost1, int co
 
 // One row of a vertical path: prev_row / prev_min are the previous row's L and
 // per-pixel minima along the path (nullptr for the first row of the path).
+// stream_row (optional, 32-byte aligned for the SIMD path): a second copy of
+// out_row written with non-temporal stores (see streaming_store.hpp).
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
                           int cols, int num_disparities, PathPenalties pen, bool simd,
-                          uint8_t* out_row, uint8_t* out_min);
+                          uint8_t* out_row, uint8_t* out_min, uint8_t* stream_row = nullptr);
 
 }  // namespace nerv::stereo

@@ -8,7 +8,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 
 #ifdef __AVX2__
@@ -16,19 +15,6 @@
 #endif
 
 namespace nerv::stereo {
-
-// Copies n bytes; streams when dst is 32-byte aligned and n a multiple of 32.
-inline void copyStreaming(uint8_t* dst, const uint8_t* src, size_t n) {
-#ifdef __AVX2__
-  if ((reinterpret_cast<uintptr_t>(dst) & 31) == 0 && n % 32 == 0) {
-    for (size_t i = 0; i < n; i += 32)
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(dst + i),
-                          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + i)));
-    return;
-  }
-#endif
-  std::memcpy(dst, src, n);
-}
 
 // Makes streamed data visible to other threads (before they read the volume).
 inline void streamingFence() {
