@@ -1,9 +1,12 @@
-// stereo_matcher service: STEREO_FRAME -> DISPARITY.
+// stereo_matcher service: STEREO_FRAME -> DISPARITY (with confidence).
+// Raw pairs (calib.rectified = false) are undistorted and rectified on ingest
+// with maps cached per calibration; the published calibration is the rectified one.
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
 
 #include "message_convert.hpp"
+#include "rectification.hpp"
 #include "service_config.hpp"
 #include "stereo_matcher.hpp"
 
@@ -18,38 +21,72 @@ cv::Mat toGray(const cv::Mat& image) {
   return gray;
 }
 
+RawStereoCalibration rawCalibration(const stereo_calibration_t& c) {
+  RawStereoCalibration raw;
+  raw.width = c.width;
+  raw.height = c.height;
+  std::copy(c.left_K, c.left_K + 9, raw.left_K.begin());
+  std::copy(c.left_D, c.left_D + 5, raw.left_D.begin());
+  std::copy(c.right_K, c.right_K + 9, raw.right_K.begin());
+  std::copy(c.right_D, c.right_D + 5, raw.right_D.begin());
+  std::copy(c.R, c.R + 9, raw.R.begin());
+  std::copy(c.T, c.T + 3, raw.T.begin());
+  return raw;
+}
+
 int serve(ServiceConfig& config) {
   const stereo::Params params = stereo::readParams(config.section());
   std::string encoding = "u16le";
   config.section().get("output_encoding", encoding, {"u16le", "png16"});
   int queue = 2;
   config.section().get("queue", queue, 1, 100);
+  bool publish_confidence = true;
+  config.section().get("publish_confidence", publish_confidence);
   config.finish();
 
   Node node(config.nodeOptions());
   auto matcher = stereo::StereoMatcher::create(params);
-  cv::Mat left, right, disparity;
+  Rectifier rectifier;
+  cv::Mat left, right, left_rect, right_rect, disparity, confidence;
 
   node.subscribe<stereo_frame_t>("STEREO_FRAME", [&](const stereo_frame_t& frame) {
     if (!node.ownsFrame(frame.header.seq)) return;  // another shard's frame
+    const std::string what = "frame " + std::to_string(frame.header.seq) + ": ";
     if (Problem p = checkStereoFrame(frame, node.options().limits))
-      return node.error(p.counter, "frame " + std::to_string(frame.header.seq) + ": " + p.message);
-    if (!frame.calib.rectified)
-      return node.error("unrectified", "frame " + std::to_string(frame.header.seq) +
-                                           ": unrectified pairs are not supported yet");
+      return node.error(p.counter, what + p.message);
+    RawStereoCalibration raw;
+    if (!frame.calib.rectified) {
+      raw = rawCalibration(frame.calib);
+      if (const std::string why = raw.problem(); !why.empty())
+        return node.error("bad_calibration", what + why);
+    }
     std::string why = decodeImage(frame.left, left);
     if (why.empty()) why = decodeImage(frame.right, right);
-    if (!why.empty())
-      return node.error("bad_image", "frame " + std::to_string(frame.header.seq) + ": " + why);
+    if (!why.empty()) return node.error("bad_image", what + why);
+    if (left.size() != right.size() || left.cols != frame.calib.width ||
+        left.rows != frame.calib.height)
+      return node.error("size_mismatch", what + "decoded images do not match the calibration size");
     node.countIn();
 
     const auto start = std::chrono::steady_clock::now();
-    matcher->compute(toGray(left), toGray(right), disparity);
     disparity_t out;
     out.header = frame.header;
     out.calib = frame.calib;
+    if (frame.calib.rectified) {
+      matcher->compute(toGray(left), toGray(right), disparity, confidence);
+    } else {
+      const StereoCamera& cam = rectifier.rectify(raw, toGray(left), toGray(right), left_rect,
+                                                  right_rect);
+      matcher->compute(left_rect, right_rect, disparity, confidence);
+      out.calib.fx = cam.fx;  // the disparity refers to the rectified pair
+      out.calib.fy = cam.fy;
+      out.calib.cx = cam.cx;
+      out.calib.cy = cam.cy;
+      out.calib.baseline_m = cam.baseline_m;
+      out.calib.rectified = true;
+    }
     encodeDisparity(disparity, encoding, out);
-    encodeConfidence(cv::Mat(), out);
+    encodeConfidence(publish_confidence ? confidence : cv::Mat(), out);
     out.algorithm = matcher->name();
     out.min_disparity = static_cast<float>(params.min_disparity);
     out.max_disparity = static_cast<float>(params.min_disparity + params.num_disparities);

@@ -1,29 +1,39 @@
-// StereoMatcher implementations over OpenCV's block matcher and semi-global matcher.
+#include "opencv_matchers.hpp"
+
 #include <opencv2/calib3d.hpp>
 
-#include "stereo_matcher.hpp"
-
 namespace nerv::stereo {
+
+void fixedToFloat(const cv::Mat& fixed16, int min_disparity, cv::Mat& disparity) {
+  fixed16.convertTo(disparity, CV_32F, 1.0 / cv::StereoMatcher::DISP_SCALE);
+  cv::Mat invalid = disparity < std::max(min_disparity, 0) + 0.0f;
+  disparity.setTo(0.0f, invalid);
+}
+
 namespace {
 
-// OpenCV returns disparity * 16 (StereoMatcher::DISP_SCALE) in CV_16S; invalid < min.
-void toFloat(const cv::Mat& fixed16, int min_disparity, cv::Mat& disparity) {
-  fixed16.convertTo(disparity, CV_32F, 1.0 / cv::StereoMatcher::DISP_SCALE);
-  cv::Mat invalid = disparity <= std::max(0, min_disparity - 1) + 0.0f;
-  disparity.setTo(0.0f, invalid);
+// OpenCV's matchers have no per-pixel confidence of their own: 1 where the
+// matcher kept a disparity (after its uniqueness and left-right checks), else 0.
+void validityConfidence(const cv::Mat& disparity, cv::Mat& confidence) {
+  confidence.create(disparity.size(), CV_32FC1);
+  confidence.setTo(0.0f);
+  confidence.setTo(1.0f, disparity > 0.0f);
 }
 
 class SgbmMatcher : public StereoMatcher {
  public:
   explicit SgbmMatcher(const Params& p) : params_(p) {
-    const int mode = p.algorithm == "sgbm_full" ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY;
+    const int mode =
+        p.algorithm == "sgbm_full" ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM_3WAY;
     sgbm_ = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size, p.p1, p.p2,
                                    p.lr_max_diff, 0, p.uniqueness_ratio, p.speckle_window_size,
                                    p.speckle_range, mode);
   }
-  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity) override {
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
     sgbm_->compute(left, right, fixed_);
-    toFloat(fixed_, params_.min_disparity, disparity);
+    fixedToFloat(fixed_, params_.min_disparity, disparity);
+    validityConfidence(disparity, confidence);
   }
   std::string name() const override { return params_.algorithm; }
 
@@ -36,7 +46,7 @@ class SgbmMatcher : public StereoMatcher {
 class BmMatcher : public StereoMatcher {
  public:
   explicit BmMatcher(const Params& p) : params_(p) {
-    bm_ = cv::StereoBM::create(p.num_disparities, std::max(5, p.block_size | 1));
+    bm_ = cv::StereoBM::create(p.num_disparities, p.bm_block_size);
     bm_->setMinDisparity(p.min_disparity);
     bm_->setUniquenessRatio(p.uniqueness_ratio);
     bm_->setSpeckleWindowSize(p.speckle_window_size);
@@ -44,9 +54,11 @@ class BmMatcher : public StereoMatcher {
     bm_->setDisp12MaxDiff(p.lr_max_diff);
     bm_->setTextureThreshold(10);
   }
-  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity) override {
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
     bm_->compute(left, right, fixed_);
-    toFloat(fixed_, params_.min_disparity, disparity);
+    fixedToFloat(fixed_, params_.min_disparity, disparity);
+    validityConfidence(disparity, confidence);
   }
   std::string name() const override { return "bm"; }
 
@@ -58,7 +70,7 @@ class BmMatcher : public StereoMatcher {
 
 }  // namespace
 
-std::unique_ptr<StereoMatcher> StereoMatcher::create(const Params& params) {
+std::unique_ptr<StereoMatcher> createOpenCvMatcher(const Params& params) {
   if (params.algorithm == "bm") return std::make_unique<BmMatcher>(params);
   return std::make_unique<SgbmMatcher>(params);
 }

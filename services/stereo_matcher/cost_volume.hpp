@@ -1,0 +1,26 @@
+// Matching cost of the own SGM: Hamming distance between census codes,
+// C(x, y, d) = popcount(censusL(x, y) ^ censusR(x - min_disparity - d, y)),
+// d in [0, D). One byte per cost, layout [y][x][d] so a pixel's D costs are
+// contiguous (what the SIMD path aggregation loads). Right pixels left of the
+// image reuse column 0. Costs are computed per row when a pass needs them
+// (from the census codes, which stay in cache) rather than stored as a volume:
+// recomputing is cheaper than the memory traffic of a W x H x D volume.
+#pragma once
+
+#include <cstdint>
+
+namespace nerv::stereo {
+
+// The right census row reversed and padded, reversed[j] = right[cols - 1 - j]
+// for j < cols and right[0] after (cols + min_disparity + D entries): the D
+// right codes a left pixel x is compared with then start at
+// j = cols - 1 - x + min_disparity, contiguous and in disparity order, so the
+// cost loop vectorises (XOR + popcount + narrow).
+void reverseCensusRow(const uint32_t* right, int cols, int min_disparity, int num_disparities,
+                      uint32_t* reversed);
+
+// Costs of columns [x0, x1) of one row: out has (x1 - x0) * D bytes.
+void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
+                     int min_disparity, int num_disparities, uint8_t* out);
+
+}  // namespace nerv::stereo

@@ -1,0 +1,213 @@
+#include "own_sgm.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "census_transform.hpp"
+#include "cost_volume.hpp"
+#include "lr_check.hpp"
+#include "path_aggregation.hpp"
+#include "speckle_filter.hpp"
+#include "streaming_store.hpp"
+#include "winner_subpixel.hpp"
+
+namespace nerv::stereo {
+namespace {
+
+// Runs body(i) for i in [0, n), in parallel on OpenCV's thread pool (kept
+// alive between frames, unlike threads started per pass).
+template <class F>
+void runOnThreads(int n, F&& body) {
+  if (n <= 1) {
+    body(0);
+    return;
+  }
+  cv::parallel_for_(cv::Range(0, n), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i) body(i);
+  }, n);
+}
+
+// Runs body(task, worker) for every task in [0, tasks) on up to `threads`
+// threads that pull tasks from a shared counter: on a computer shared with
+// other processes a slowed thread simply takes fewer tasks.
+template <class F>
+void parallelTasks(int threads, int tasks, F&& body) {
+  std::atomic<int> next{0};
+  runOnThreads(std::max(1, std::min(threads, tasks)), [&](int worker) {
+    for (int task; (task = next.fetch_add(1)) < tasks;) body(task, worker);
+  });
+}
+
+struct StripeWorkspace {
+  std::vector<uint8_t> forward[2], backward[2], cost_row[2];
+  std::vector<uint8_t> sum, right_cost;
+  std::vector<int16_t> best_left, best_right, right_index;
+};
+
+class OwnSgm : public StereoMatcher {
+ public:
+  OwnSgm(const Params& p, bool simd) : p_(p), simd_(simd && pathSimdAvailable()) {
+    checkParams(p_);
+    pen_.p1 = p.sgm_p1;
+    pen_.p2 = p.sgm_p2;
+  }
+
+  std::string name() const override { return "nerv_sgm"; }
+
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    CV_Assert(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.size() == right.size());
+    const int rows = left.rows, cols = left.cols, D = p_.num_disparities;
+    const int threads = std::max(1, std::min(p_.threads, rows));
+    const size_t row_bytes = static_cast<size_t>(cols) * D;
+    const size_t volume_bytes = row_bytes * rows;
+    down_.resize(volume_bytes);
+    up_.resize(volume_bytes);
+    workspaces_.resize(threads);
+    census_left_.create(left.size(), CV_32SC1);
+    census_right_.create(left.size(), CV_32SC1);
+    right_reversed_.create(rows, cols + p_.min_disparity + D, CV_32SC1);
+    disparity.create(left.size(), CV_32FC1);
+    confidence.create(left.size(), CV_32FC1);
+
+#ifdef NERV_SGM_PROFILE
+    auto t_prev = std::chrono::steady_clock::now();
+#define PROFILE_MARK(what) { auto t_now = std::chrono::steady_clock::now(); std::fprintf(stderr, "%s %.1f ms  ", what, std::chrono::duration<double, std::milli>(t_now - t_prev).count()); t_prev = t_now; }
+#else
+#define PROFILE_MARK(what)
+#endif
+    constexpr int kRowsPerTask = 8;
+    const int row_tasks = (rows + kRowsPerTask - 1) / kRowsPerTask;
+    // 1. census of both views
+    parallelTasks(threads, row_tasks, [&](int task, int) {
+      const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
+      censusTransform(left, p_.census_width, p_.census_height, census_left_, begin, end);
+      censusTransform(right, p_.census_width, p_.census_height, census_right_, begin, end);
+      for (int y = begin; y < end; ++y)
+        reverseCensusRow(census_right_.ptr<uint32_t>(y), cols, p_.min_disparity, D,
+                         right_reversed_.ptr<uint32_t>(y));
+    });
+    PROFILE_MARK("census");
+    // 2. vertical paths: columns are independent, so each (direction, column
+    // band) is a task.
+    constexpr int kColumnBands = 8;
+    parallelTasks(threads, 2 * kColumnBands, [&](int task, int) {
+      const bool downward = task % 2 == 0;
+      const int band = task / 2;
+      const int x0 = cols * band / kColumnBands, x1 = cols * (band + 1) / kColumnBands;
+      const int n = x1 - x0;
+      if (n <= 0) return;
+      // The path runs in two cache-resident row buffers; each finished row is
+      // streamed to the volume that pass 3 reads.
+      std::vector<uint8_t> mins_a(n), mins_b(n), row_a(static_cast<size_t>(n) * D),
+          row_b(static_cast<size_t>(n) * D), costs(static_cast<size_t>(n) * D);
+      uint8_t* prev_min = mins_a.data();
+      uint8_t* out_min = mins_b.data();
+      uint8_t* prev_row = row_a.data();
+      uint8_t* out_row = row_b.data();
+      AlignedBytes& volume = downward ? down_ : up_;
+      const size_t x_offset = static_cast<size_t>(x0) * D;
+      for (int i = 0; i < rows; ++i) {
+        const int y = downward ? i : rows - 1 - i;
+        censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, x0,
+                        x1, p_.min_disparity, D, costs.data());
+        aggregateRowVertical(costs.data(), i == 0 ? nullptr : prev_row, prev_min, n, D, pen_, simd_,
+                             out_row, out_min, volume.data() + row_bytes * y + x_offset);
+        std::swap(prev_min, out_min);
+        std::swap(prev_row, out_row);
+      }
+      streamingFence();
+    });
+    PROFILE_MARK("vertical");
+    // 3. horizontal paths, sum, winners, left-right check
+    WinnerOptions options;
+    options.uniqueness_ratio = p_.uniqueness_ratio;
+    options.subpixel = p_.subpixel;
+    parallelTasks(threads, row_tasks, [&](int task, int worker) {
+      const int begin = task * kRowsPerTask, end = std::min(rows, begin + kRowsPerTask);
+      StripeWorkspace& w = workspaces_[worker];
+      for (int j = 0; j < 2; ++j) {
+        w.cost_row[j].resize(row_bytes);
+        w.forward[j].resize(row_bytes);
+        w.backward[j].resize(row_bytes);
+      }
+      w.sum.resize(row_bytes);
+      w.best_left.resize(cols);
+      w.best_right.resize(cols);
+      for (int y = begin; y < end; ++y) {
+        const size_t o = row_bytes * y;
+        // rows are taken in pairs: their horizontal paths run interleaved
+        const int j = (y - begin) % 2;
+        if (j == 0) {
+          const int pair = std::min(2, end - y);
+          for (int k = 0; k < pair; ++k)
+            censusCostRange(census_left_.ptr<uint32_t>(y + k), right_reversed_.ptr<uint32_t>(y + k),
+                            cols, 0, cols, p_.min_disparity, D, w.cost_row[k].data());
+          if (pair == 2)
+            aggregateRowsHorizontal2(w.cost_row[0].data(), w.cost_row[1].data(), cols, D, pen_, simd_,
+                                     w.forward[0].data(), w.backward[0].data(), w.forward[1].data(),
+                                     w.backward[1].data());
+          else
+            aggregateRowHorizontal(w.cost_row[0].data(), cols, D, pen_, simd_, w.forward[0].data(),
+                                   w.backward[0].data());
+        }
+        float* disp = disparity.ptr<float>(y);
+        float* conf = confidence.ptr<float>(y);
+        const bool check = p_.lr_max_diff >= 0;
+        const uint8_t* const paths[4] = {w.forward[j].data(), w.backward[j].data(),
+                                         down_.data() + o, up_.data() + o};
+        if (simd_) {
+          selectWinnersFromPaths(paths, cols, D, p_.min_disparity, options, w.best_left.data(), disp,
+                                 conf, check ? w.best_right.data() : nullptr, w.sum, w.right_cost,
+                                 w.right_index);
+        } else {  // the separate scalar steps (what the SIMD-vs-scalar test compares)
+          averagePaths(paths, row_bytes, w.sum.data());
+          selectLeftWinners(w.sum.data(), cols, D, options, w.best_left.data(), disp, conf);
+          if (check)
+            selectRightWinners(w.sum.data(), cols, D, p_.min_disparity, w.best_right.data(),
+                               w.right_cost, w.right_index);
+          if (options.subpixel) refineSubpixel(paths, cols, D, w.best_left.data(), disp);
+        }
+        if (check)
+          leftRightCheckRow(w.best_left.data(), w.best_right.data(), cols, p_.min_disparity,
+                            p_.lr_max_diff, disp, conf);
+        for (int x = 0; x < cols; ++x) {
+          // index -> pixels; disparity 0 (infinitely far) is "invalid" in nerv's encoding
+          const float d = disp[x] < 0.0f ? 0.0f : disp[x] + static_cast<float>(p_.min_disparity);
+          disp[x] = d > 0.0f ? d : 0.0f;
+          if (disp[x] == 0.0f) conf[x] = 0.0f;
+        }
+      }
+    });
+    PROFILE_MARK("horizontal+winners");
+    // Speckles in two fixed halves (the result does not depend on the thread
+    // count): OpenCV's filterSpeckles is single-threaded and would otherwise
+    // be a tenth of the frame time.
+    parallelTasks(threads, 2, [&](int half, int) {
+      removeSpeckles(disparity, &confidence, p_.speckle_window_size, p_.speckle_range,
+                     rows * half / 2, rows * (half + 1) / 2, speckle_scratch_[half]);
+    });
+    PROFILE_MARK("speckles");
+    PROFILE_MARK("final");
+  }
+
+ private:
+  Params p_;
+  bool simd_;
+  PathPenalties pen_;
+  cv::Mat census_left_, census_right_, right_reversed_;
+  AlignedBytes down_, up_;
+  std::vector<StripeWorkspace> workspaces_;
+  SpeckleScratch speckle_scratch_[2];
+};
+
+}  // namespace
+
+std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd) {
+  return std::make_unique<OwnSgm>(params, use_simd);
+}
+
+}  // namespace nerv::stereo

@@ -1,0 +1,180 @@
+#include "path_aggregation.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
+
+namespace nerv::stereo {
+
+namespace {
+
+inline uint8_t saturate(int v) { return static_cast<uint8_t>(std::min(v, 255)); }
+
+#ifdef __AVX2__
+// The AVX2 step. D costs of the previous pixel sit in D/32 registers; the
+// d-1 / d+1 neighbours are the register shifted by one byte across the
+// 128-bit lanes (permute2x128 + alignr), with 255 shifted in at both ends.
+// stream (32-byte aligned, or nullptr): a second copy of out written with
+// non-temporal stores (the vertical paths' volume).
+__attribute__((always_inline)) inline uint8_t stepAvx2(const uint8_t* cost, const uint8_t* prev,
+                                                       uint8_t prev_min, uint8_t* out, int D,
+                                                       __m256i p1v, __m256i p2v,
+                                                       uint8_t* stream = nullptr) {
+  const __m256i minv = _mm256_set1_epi8(static_cast<char>(prev_min));
+  const __m256i jump = _mm256_adds_epu8(minv, p2v);
+  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
+  __m256i below = full;
+  __m256i cur = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev));
+  __m256i running = full;
+  for (int k = 0; k < D; k += 32) {
+    const __m256i above =
+        k + 32 < D ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + k + 32)) : full;
+    const __m256i minus1 =
+        _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 15);  // L(d-1)
+    const __m256i plus1 =
+        _mm256_alignr_epi8(_mm256_permute2x128_si256(cur, above, 0x21), cur, 1);   // L(d+1)
+    const __m256i m = _mm256_min_epu8(
+        _mm256_min_epu8(cur, _mm256_adds_epu8(minus1, p1v)),
+        _mm256_min_epu8(_mm256_adds_epu8(plus1, p1v), jump));
+    const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(cost + k));
+    const __m256i v = _mm256_adds_epu8(_mm256_sub_epi8(m, minv), c);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + k), v);
+    if (stream) _mm256_stream_si256(reinterpret_cast<__m256i*>(stream + k), v);
+    running = _mm256_min_epu8(running, v);
+    below = cur;
+    cur = above;
+  }
+  // Horizontal minimum of 32 bytes: fold to 16, pair bytes into 16-bit lanes, minpos.
+  __m128i x = _mm_min_epu8(_mm256_castsi256_si128(running), _mm256_extracti128_si256(running, 1));
+  x = _mm_min_epu8(x, _mm_srli_epi16(x, 8));
+  return static_cast<uint8_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(x)));
+}
+#endif
+
+}  // namespace
+
+bool pathSimdAvailable() {
+#ifdef __AVX2__
+  return true;
+#else
+  return false;
+#endif
+}
+
+uint8_t pathStepScalar(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
+                       int D, PathPenalties pen) {
+  const int jump = prev_min + pen.p2;
+  int running = 255;
+  for (int d = 0; d < D; ++d) {
+    const int minus1 = d > 0 ? prev[d - 1] : 255;
+    const int plus1 = d + 1 < D ? prev[d + 1] : 255;
+    const int m = std::min({static_cast<int>(prev[d]), static_cast<int>(saturate(minus1 + pen.p1)),
+                            static_cast<int>(saturate(plus1 + pen.p1)),
+                            static_cast<int>(saturate(jump))});
+    out[d] = saturate(m - prev_min + cost[d]);
+    running = std::min(running, static_cast<int>(out[d]));
+  }
+  return static_cast<uint8_t>(running);
+}
+
+uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
+                     int D, PathPenalties pen) {
+#ifdef __AVX2__
+  if (D % 32 == 0)
+    return stepAvx2(cost, prev, prev_min, out, D, _mm256_set1_epi8(static_cast<char>(pen.p1)),
+                    _mm256_set1_epi8(static_cast<char>(pen.p2)));
+#endif
+  return pathStepScalar(cost, prev, prev_min, out, D, pen);
+}
+
+void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties pen, bool simd,
+                            uint8_t* forward, uint8_t* backward) {
+  if (cols <= 0) return;
+  std::vector<uint8_t> zeros(D, 0);
+  uint8_t min_fwd = 0, min_bwd = 0;
+  const uint8_t* prev_fwd = zeros.data();
+  const uint8_t* prev_bwd = zeros.data();
+#ifdef __AVX2__
+  if (simd && D % 32 == 0) {
+    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
+    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
+    // Both directions in one loop: two independent dependency chains per
+    // iteration keep the core busy while each waits on its horizontal minimum.
+    for (int i = 0; i < cols; ++i) {
+      const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
+      min_fwd = stepAvx2(cost + f, prev_fwd, min_fwd, forward + f, D, p1v, p2v);
+      min_bwd = stepAvx2(cost + b, prev_bwd, min_bwd, backward + b, D, p1v, p2v);
+      prev_fwd = forward + f;
+      prev_bwd = backward + b;
+    }
+    return;
+  }
+#endif
+  for (int i = 0; i < cols; ++i) {
+    const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
+    min_fwd = pathStepScalar(cost + f, prev_fwd, min_fwd, forward + f, D, pen);
+    min_bwd = pathStepScalar(cost + b, prev_bwd, min_bwd, backward + b, D, pen);
+    prev_fwd = forward + f;
+    prev_bwd = backward + b;
+  }
+}
+
+void aggregateRowsHorizontal2(const uint8_t* cost0, const uint8_t* cost1, int cols, int D,
+                              PathPenalties pen, bool simd, uint8_t* forward0, uint8_t* backward0,
+                              uint8_t* forward1, uint8_t* backward1) {
+#ifdef __AVX2__
+  if (simd && D % 32 == 0 && cols > 0) {
+    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
+    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
+    std::vector<uint8_t> zeros(D, 0);
+    uint8_t m[4] = {0, 0, 0, 0};
+    const uint8_t* prev[4] = {zeros.data(), zeros.data(), zeros.data(), zeros.data()};
+    for (int i = 0; i < cols; ++i) {
+      const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
+      m[0] = stepAvx2(cost0 + f, prev[0], m[0], forward0 + f, D, p1v, p2v);
+      m[1] = stepAvx2(cost0 + b, prev[1], m[1], backward0 + b, D, p1v, p2v);
+      m[2] = stepAvx2(cost1 + f, prev[2], m[2], forward1 + f, D, p1v, p2v);
+      m[3] = stepAvx2(cost1 + b, prev[3], m[3], backward1 + b, D, p1v, p2v);
+      prev[0] = forward0 + f;
+      prev[1] = backward0 + b;
+      prev[2] = forward1 + f;
+      prev[3] = backward1 + b;
+    }
+    return;
+  }
+#endif
+  aggregateRowHorizontal(cost0, cols, D, pen, simd, forward0, backward0);
+  aggregateRowHorizontal(cost1, cols, D, pen, simd, forward1, backward1);
+}
+
+void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
+                          int cols, int D, PathPenalties pen, bool simd, uint8_t* out_row,
+                          uint8_t* out_min, uint8_t* stream_row) {
+  std::vector<uint8_t> zeros;
+  if (!prev_row) zeros.assign(D, 0);
+#ifdef __AVX2__
+  if (simd && D % 32 == 0) {
+    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
+    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
+    for (int x = 0; x < cols; ++x) {
+      const size_t o = static_cast<size_t>(x) * D;
+      uint8_t* stream = stream_row ? stream_row + o : nullptr;
+      out_min[x] = prev_row ? stepAvx2(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v, stream)
+                            : stepAvx2(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v, stream);
+    }
+    return;
+  }
+#endif
+  for (int x = 0; x < cols; ++x) {
+    const size_t o = static_cast<size_t>(x) * D;
+    out_min[x] = prev_row ? pathStepScalar(cost + o, prev_row + o, prev_min[x], out_row + o, D, pen)
+                          : pathStepScalar(cost + o, zeros.data(), 0, out_row + o, D, pen);
+  }
+  if (stream_row) std::memcpy(stream_row, out_row, static_cast<size_t>(cols) * D);
+}
+
+}  // namespace nerv::stereo

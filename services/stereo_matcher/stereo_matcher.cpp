@@ -1,0 +1,57 @@
+// StereoMatcher::create: algorithm name -> implementation, optionally wrapped
+// in the reduced-resolution mode (match at half size, publish at full size).
+#include "stereo_matcher.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include "opencv_matchers.hpp"
+#include "own_sgm.hpp"
+
+namespace nerv::stereo {
+namespace {
+
+std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
+  if (p.algorithm == "nerv_sgm") return createOwnSgm(p);
+  if (p.algorithm == "sgbm_wls") return createWlsMatcher(p);
+  return createOpenCvMatcher(p);
+}
+
+// For slow computers: both views are averaged down by 2 (INTER_AREA), matched
+// with half the range, and the disparity scaled back (values x2, nearest-
+// neighbour upsampling so invalid pixels stay invalid and edges stay sharp).
+class ReducedResolution : public StereoMatcher {
+ public:
+  explicit ReducedResolution(Params p) {
+    p.num_disparities /= 2;
+    p.min_disparity /= 2;
+    p.speckle_window_size /= 4;
+    p.block_size = std::max(3, (p.block_size / 2) | 1);
+    p.bm_block_size = std::max(5, (p.bm_block_size / 2) | 1);
+    inner_ = createFullResolution(p);
+  }
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    const cv::Size half((left.cols + 1) / 2, (left.rows + 1) / 2);
+    cv::resize(left, small_left_, half, 0, 0, cv::INTER_AREA);
+    cv::resize(right, small_right_, half, 0, 0, cv::INTER_AREA);
+    inner_->compute(small_left_, small_right_, small_disparity_, small_confidence_);
+    cv::resize(small_disparity_, disparity, left.size(), 0, 0, cv::INTER_NEAREST);
+    disparity *= 2.0;
+    cv::resize(small_confidence_, confidence, left.size(), 0, 0, cv::INTER_NEAREST);
+  }
+  std::string name() const override { return inner_->name() + "_half"; }
+
+ private:
+  std::unique_ptr<StereoMatcher> inner_;
+  cv::Mat small_left_, small_right_, small_disparity_, small_confidence_;
+};
+
+}  // namespace
+
+std::unique_ptr<StereoMatcher> StereoMatcher::create(const Params& params) {
+  checkParams(params);
+  if (params.downscale == 2) return std::make_unique<ReducedResolution>(params);
+  return createFullResolution(params);
+}
+
+}  // namespace nerv::stereo

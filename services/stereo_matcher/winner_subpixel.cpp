@@ -1,0 +1,215 @@
+#include "winner_subpixel.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
+
+namespace nerv::stereo {
+
+float equiangularOffset(int a, int b, int c) {
+  // Equal slopes on both sides: the steeper measured side gives the slope.
+  const int slope = std::max(a - b, c - b);
+  if (slope <= 0) return 0.0f;
+  return std::clamp(0.5f * static_cast<float>(a - c) / static_cast<float>(slope), -0.5f, 0.5f);
+}
+
+void averagePaths(const uint8_t* const p[4], size_t n, uint8_t* out) {
+  for (size_t k = 0; k < n; ++k) {
+    const int ab = (p[0][k] + p[1][k] + 1) >> 1, ce = (p[2][k] + p[3][k] + 1) >> 1;
+    out[k] = static_cast<uint8_t>((ab + ce + 1) >> 1);
+  }
+}
+
+namespace {
+
+// Smallest cost with |d - d1| > 1 (s1 when there is none, D <= 3).
+inline int secondBest(const uint8_t* s, int D, int d1, int s1) {
+  int second = 256;
+  for (int d = 0; d < D; ++d)
+    if (d < d1 - 1 || d > d1 + 1) second = std::min(second, static_cast<int>(s[d]));
+  return second == 256 ? s1 : second;
+}
+
+// Uniqueness test and confidence for one pixel.
+inline void decide(int d1, int s1, int s2, WinnerOptions opt, int16_t& best, float& disparity,
+                   float& confidence) {
+  if (opt.uniqueness_ratio > 0 && s2 * (100 - opt.uniqueness_ratio) < s1 * 100) {
+    best = -1;
+    disparity = -1.0f;
+    confidence = 0.0f;
+    return;
+  }
+  best = static_cast<int16_t>(d1);
+  disparity = static_cast<float>(d1);
+  confidence = s2 > 0 ? static_cast<float>(s2 - s1) / static_cast<float>(s2) : 0.0f;
+}
+
+// Subpixel offset from the exact path sum at d1 - 1, d1, d1 + 1 (o: the
+// pixel's offset in the path rows). The averaged minimum may sit a rounding
+// step off the exact one: fit only when d1 is a minimum of the exact sum too.
+inline void refinePixel(const uint8_t* const p[4], size_t o, int d1, float& disparity) {
+  auto sum = [&](size_t k) { return p[0][k] + p[1][k] + p[2][k] + p[3][k]; };
+  const size_t k = o + d1;
+  const int a = sum(k - 1), b = sum(k), c = sum(k + 1);
+  if (b <= a && b <= c) disparity = static_cast<float>(d1) + equiangularOffset(a, b, c);
+}
+
+#ifdef __AVX2__
+inline __m256i load(const void* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+
+// Minimum of 32 bytes, broadcast-free: fold to 16, pair bytes into 16-bit lanes, minpos.
+inline int horizontalMin(__m256i v) {
+  __m128i x = _mm_min_epu8(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+  x = _mm_min_epu8(x, _mm_srli_epi16(x, 8));
+  return _mm_cvtsi128_si32(_mm_minpos_epu16(x)) & 0xffff;
+}
+
+// Fused per-pixel loop; D % 32 == 0, D < 256 (byte indices, 255 = no candidate).
+void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+                  WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
+                  int16_t* best_right) {
+  // Right view without a scattered running minimum: the candidates (x, d) and
+  // (x - 1, d - 1) see the same right pixel, so the best candidate so far per
+  // right pixel is a D-vector shifted by one lane per left pixel:
+  // run_x[d] = min(S(x, d), run_{x-1}[d - 1]); lane D - 1 is final then.
+  alignas(32) uint8_t run_cost[256];
+  alignas(32) uint8_t run_index[256];
+  alignas(32) uint8_t s[256];
+  std::fill(run_cost, run_cost + D, uint8_t{255});
+  std::fill(run_index, run_index + D, uint8_t{255});
+  if (best_right) std::fill(best_right, best_right + cols, int16_t{-1});
+  const __m256i lanes = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+                                         17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
+  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
+  // lane i of the result = lane i - 1 of cur (lane 0 = last lane of below)
+  auto shift_in = [](__m256i cur, __m256i below) {
+    return _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 15);
+  };
+  for (int x = 0; x < cols; ++x) {
+    const size_t o = static_cast<size_t>(x) * D;
+    __m256i vmin = full;
+    __m256i below_cost = full, below_index = full;  // run_{x-1}[-1]: no candidate
+    for (int k = 0; k < D; k += 32) {
+      const __m256i v = _mm256_avg_epu8(_mm256_avg_epu8(load(paths[0] + o + k), load(paths[1] + o + k)),
+                                        _mm256_avg_epu8(load(paths[2] + o + k), load(paths[3] + o + k)));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(s + k), v);
+      vmin = _mm256_min_epu8(vmin, v);
+      if (best_right) {
+        const __m256i prev_cost = load(run_cost + k), prev_index = load(run_index + k);
+        const __m256i shifted_cost = shift_in(prev_cost, below_cost);
+        const __m256i shifted_index = shift_in(prev_index, below_index);
+        below_cost = prev_cost;
+        below_index = prev_index;
+        // keep the earlier (smaller d) candidate unless v is strictly smaller;
+        // an empty lane (index 255) always takes v
+        const __m256i keep = _mm256_andnot_si256(
+            _mm256_cmpeq_epi8(shifted_index, full),
+            _mm256_cmpeq_epi8(_mm256_max_epu8(v, shifted_cost), v));
+        const __m256i d = _mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(k)));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(run_cost + k), _mm256_blendv_epi8(v, shifted_cost, keep));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(run_index + k), _mm256_blendv_epi8(d, shifted_index, keep));
+      }
+    }
+    if (best_right) {
+      const int xr = x - min_disparity - (D - 1);  // its last candidate was (x, D - 1)
+      if (xr >= 0) best_right[xr] = run_index[D - 1];
+    }
+    const int s1 = horizontalMin(vmin);
+    const __m256i target = _mm256_set1_epi8(static_cast<char>(s1));
+    int d1 = 0;
+    for (int d = 0; d < D; d += 32) {
+      const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(
+          _mm256_cmpeq_epi8(_mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)), target)));
+      if (mask) {
+        d1 = d + __builtin_ctz(mask);
+        break;
+      }
+    }
+    // second best: lanes d1 - 1 .. d1 + 1 masked to 255 by an index compare
+    // (in registers: scalar stores into s followed by vector loads would stall
+    // store forwarding)
+    const __m256i lo = _mm256_set1_epi8(static_cast<char>(d1 - 1));
+    const __m256i two = _mm256_set1_epi8(2);
+    __m256i m2 = full;
+    for (int d = 0; d < D; d += 32) {
+      const __m256i t = _mm256_sub_epi8(_mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(d))), lo);
+      const __m256i near = _mm256_cmpeq_epi8(_mm256_min_epu8(t, two), t);  // 0 <= d' - (d1 - 1) <= 2
+      m2 = _mm256_min_epu8(m2, _mm256_or_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)), near));
+    }
+    // all-255 except the masked lanes would read 255 here; the scalar
+    // secondBest then also sees 255 (a real cost), so both agree
+    const int s2 = D <= 3 ? s1 : horizontalMin(m2);
+    decide(d1, s1, s2, opt, best[x], disparity[x], confidence[x]);
+    if (opt.subpixel && best[x] > 0 && best[x] + 1 < D) refinePixel(paths, o, d1, disparity[x]);
+  }
+  if (best_right)  // right pixels whose candidates ended at the row's last pixel
+    for (int d = 0; d + 1 < D; ++d) {
+      const int xr = cols - 1 - min_disparity - d;
+      if (xr >= 0 && xr < cols) best_right[xr] = run_index[d] == 255 ? -1 : run_index[d];
+    }
+}
+#endif
+
+}  // namespace
+
+void selectLeftWinners(const uint8_t* S, int cols, int D, WinnerOptions opt, int16_t* best,
+                       float* disparity, float* confidence) {
+  for (int x = 0; x < cols; ++x) {
+    const uint8_t* s = S + static_cast<size_t>(x) * D;
+    int d1 = 0;
+    for (int d = 1; d < D; ++d)
+      if (s[d] < s[d1]) d1 = d;
+    decide(d1, s[d1], secondBest(s, D, d1, s[d1]), opt, best[x], disparity[x], confidence[x]);
+  }
+}
+
+void selectRightWinners(const uint8_t* S, int cols, int D, int min_disparity, int16_t* best_right,
+                        std::vector<uint8_t>& cost, std::vector<int16_t>& index) {
+  // Reversed right index j = cols - 1 - xr = (cols - 1 - x) + min_disparity + d.
+  const int n = cols + min_disparity + D;
+  cost.assign(n, 255);
+  index.assign(n, -1);
+  for (int x = 0; x < cols; ++x) {
+    const uint8_t* s = S + static_cast<size_t>(x) * D;
+    uint8_t* c = cost.data() + (cols - 1 - x) + min_disparity;
+    int16_t* i = index.data() + (cols - 1 - x) + min_disparity;
+    for (int d = 0; d < D; ++d) {
+      // x grows with d for a fixed right pixel: strict < keeps the smallest d
+      const bool better = i[d] < 0 || s[d] < c[d];
+      c[d] = better ? s[d] : c[d];
+      i[d] = better ? static_cast<int16_t>(d) : i[d];
+    }
+  }
+  for (int xr = 0; xr < cols; ++xr) best_right[xr] = index[cols - 1 - xr];
+}
+
+void refineSubpixel(const uint8_t* const p[4], int cols, int D, const int16_t* best,
+                    float* disparity) {
+  for (int x = 0; x < cols; ++x)
+    if (best[x] > 0 && best[x] + 1 < D) refinePixel(p, static_cast<size_t>(x) * D, best[x], disparity[x]);
+}
+
+void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+                            WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
+                            int16_t* best_right, std::vector<uint8_t>& sum,
+                            std::vector<uint8_t>& cost, std::vector<int16_t>& index) {
+  bool done = false;
+#ifdef __AVX2__
+  if (D % 32 == 0 && D < 256) {
+    fusedWinners(paths, cols, D, min_disparity, opt, best, disparity, confidence, best_right);
+    done = true;
+  }
+#endif
+  if (!done) {
+    sum.resize(static_cast<size_t>(cols) * D);
+    averagePaths(paths, sum.size(), sum.data());
+    selectLeftWinners(sum.data(), cols, D, opt, best, disparity, confidence);
+    if (best_right) selectRightWinners(sum.data(), cols, D, min_disparity, best_right, cost, index);
+    if (opt.subpixel) refineSubpixel(paths, cols, D, best, disparity);
+  }
+}
+
+}  // namespace nerv::stereo

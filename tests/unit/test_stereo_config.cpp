@@ -1,0 +1,91 @@
+// stereo_matcher configuration errors at start, and the bad-input checks the
+// service applies to every frame (counted and dropped, never a crash).
+#include <gtest/gtest.h>
+
+#include "message_check.hpp"
+#include "stereo_matcher.hpp"
+
+using namespace nerv;
+
+namespace {
+
+std::string configError(const std::string& yaml) {
+  ConfigSection section(YAML::Load(yaml), "stereo_matcher");
+  try {
+    stereo::readParams(section);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+image_t gray(int w, int h) {
+  image_t im;
+  im.width = w;
+  im.height = h;
+  im.channels = 1;
+  im.encoding = "gray8";
+  im.data.assign(static_cast<size_t>(w) * h, 128);
+  im.size = static_cast<int32_t>(im.data.size());
+  return im;
+}
+
+stereo_frame_t frame(int w, int h) {
+  stereo_frame_t f{};
+  f.calib.width = w;
+  f.calib.height = h;
+  f.calib.fx = f.calib.fy = 700;
+  f.calib.cx = w / 2.0;
+  f.calib.cy = h / 2.0;
+  f.calib.baseline_m = 0.5;
+  f.calib.rectified = true;
+  f.left = gray(w, h);
+  f.right = gray(w, h);
+  return f;
+}
+
+}  // namespace
+
+TEST(StereoConfig, DefaultsAreValid) {
+  EXPECT_EQ(configError("{}"), "");
+  EXPECT_EQ(configError("{algorithm: sgbm_wls, num_disparities: 64, downscale: 2}"), "");
+  EXPECT_NO_THROW(stereo::StereoMatcher::create(stereo::Params{}));
+}
+
+TEST(StereoConfig, BadValuesNameTheKey) {
+  EXPECT_NE(configError("{num_disparities: 0}").find("stereo_matcher.num_disparities"), std::string::npos);
+  EXPECT_NE(configError("{num_disparities: -32}").find("stereo_matcher.num_disparities"), std::string::npos);
+  EXPECT_NE(configError("{num_disparities: 40}").find("stereo_matcher.num_disparities"), std::string::npos);
+  EXPECT_NE(configError("{algorithm: magic}").find("stereo_matcher.algorithm"), std::string::npos);
+  EXPECT_NE(configError("{sgm_p2: 230}").find("stereo_matcher.sgm_p2"), std::string::npos);
+  EXPECT_NE(configError("{downscale: 3}").find("stereo_matcher.downscale"), std::string::npos);
+  EXPECT_NE(configError("{census_width: 9, census_height: 9}").find("stereo_matcher.census_width"), std::string::npos);
+  EXPECT_NE(configError("{census_width: 8}").find("stereo_matcher.census_width"), std::string::npos);
+  stereo::Params p;
+  p.algorithm = "magic";
+  EXPECT_THROW(stereo::StereoMatcher::create(p), ConfigError);
+  p = stereo::Params{};
+  p.num_disparities = -16;
+  EXPECT_THROW(stereo::StereoMatcher::create(p), ConfigError);
+}
+
+TEST(StereoConfig, BadFramesAreRejectedWithACounter) {
+  Limits limits;
+  limits.max_width = 640;
+  limits.max_height = 480;
+  EXPECT_FALSE(checkStereoFrame(frame(64, 48), limits));
+
+  stereo_frame_t sizes = frame(64, 48);
+  sizes.right = gray(60, 48);
+  const Problem a = checkStereoFrame(sizes, limits);
+  EXPECT_EQ(a.counter, "size_mismatch") << a.message;
+
+  const Problem b = checkStereoFrame(frame(800, 48), limits);
+  EXPECT_TRUE(b) << "image wider than max_width";
+  EXPECT_FALSE(b.message.empty());
+
+  stereo_frame_t calib = frame(64, 48);
+  calib.calib.width = 128;
+  const Problem c = checkStereoFrame(calib, limits);
+  EXPECT_EQ(c.counter, "size_mismatch") << c.message;
+}

@@ -1,0 +1,326 @@
+// nerv_sgm against a slow, obviously correct reference of the same census cost
+// and 4-path aggregation; SIMD against scalar; known-disparity and occlusion scenes.
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "census_transform.hpp"
+#include "own_sgm.hpp"
+#include "path_aggregation.hpp"
+#include "winner_subpixel.hpp"
+#include "stereo_matcher.hpp"
+
+using namespace nerv::stereo;
+
+namespace {
+
+cv::Mat texture(int rows, int cols, unsigned seed, double blur_sigma = 1.0) {
+  cv::Mat noise(rows, cols, CV_8UC1);
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
+  if (blur_sigma > 0) cv::GaussianBlur(noise, noise, cv::Size(0, 0), blur_sigma);
+  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
+  return noise;
+}
+
+// Shift by a (possibly fractional) number of pixels: out(x) = in(x - dx).
+cv::Mat shifted(const cv::Mat& in, double dx) {
+  cv::Mat out;
+  const cv::Matx23d m(1, 0, dx, 0, 1, 0);
+  cv::warpAffine(in, out, m, in.size(), cv::INTER_CUBIC, cv::BORDER_REFLECT);
+  return out;
+}
+
+// ---- reference: direct transcription of the definitions, int arithmetic ----
+std::vector<uint32_t> referenceCensus(const cv::Mat& img, int ww, int wh) {
+  // center-symmetric: pairs (o, -o) for the offsets o before the centre, row-major
+  std::vector<uint32_t> out(img.total(), 0);
+  const int rw = ww / 2, rh = wh / 2;
+  for (int y = rh; y < img.rows - rh; ++y)
+    for (int x = rw; x < img.cols - rw; ++x) {
+      uint32_t bits = 0;
+      for (int i = 0; i < (ww * wh) / 2; ++i) {
+        const int dy = i / ww - rh, dx = i % ww - rw;
+        bits = bits * 2 + (img.at<uint8_t>(y + dy, x + dx) < img.at<uint8_t>(y - dy, x - dx) ? 1 : 0);
+      }
+      out[y * img.cols + x] = bits;
+    }
+  return out;
+}
+
+cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p) {
+  const int H = left.rows, W = left.cols, D = p.num_disparities;
+  const auto cl = referenceCensus(left, p.census_width, p.census_height);
+  const auto cr = referenceCensus(right, p.census_width, p.census_height);
+  auto at = [&](int y, int x, int d) { return (static_cast<size_t>(y) * W + x) * D + d; };
+  std::vector<int> C(static_cast<size_t>(H) * W * D);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (int d = 0; d < D; ++d) {
+        const int xr = std::max(0, x - p.min_disparity - d);
+        C[at(y, x, d)] = __builtin_popcount(cl[y * W + x] ^ cr[y * W + xr]);
+      }
+  const int dirs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};  // (dx, dy): ->, <-, down, up
+  std::vector<std::vector<int>> paths;
+  for (const auto& dir : dirs) {
+    std::vector<int> L(C.size());
+    const int dx = dir[0], dy = dir[1];
+    // visit pixels so that p - r is always done before p
+    for (int i = 0; i < H; ++i)
+      for (int j = 0; j < W; ++j) {
+        const int y = dy >= 0 ? i : H - 1 - i;
+        const int x = dx >= 0 ? j : W - 1 - j;
+        const int px = x - dx, py = y - dy;
+        const bool start = px < 0 || px >= W || py < 0 || py >= H;
+        int prev_min = 1 << 30;
+        if (!start)
+          for (int d = 0; d < D; ++d) prev_min = std::min(prev_min, L[at(py, px, d)]);
+        for (int d = 0; d < D; ++d) {
+          int v = C[at(y, x, d)];
+          if (!start) {
+            int m = std::min(L[at(py, px, d)], prev_min + p.sgm_p2);
+            if (d > 0) m = std::min(m, L[at(py, px, d - 1)] + p.sgm_p1);
+            if (d + 1 < D) m = std::min(m, L[at(py, px, d + 1)] + p.sgm_p1);
+            v += m - prev_min;
+          }
+          L[at(y, x, d)] = v;
+        }
+      }
+    paths.push_back(std::move(L));
+  }
+  // winners work on the rounded average avg(avg(->, <-), avg(down, up))
+  auto avg = [](int a, int b) { return (a + b + 1) / 2; };
+  std::vector<int> S(C.size());
+  for (size_t k = 0; k < S.size(); ++k)
+    S[k] = avg(avg(paths[0][k], paths[1][k]), avg(paths[2][k], paths[3][k]));
+  cv::Mat disparity(H, W, CV_32FC1);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      int best = 0;
+      for (int d = 1; d < D; ++d)
+        if (S[at(y, x, d)] < S[at(y, x, best)]) best = d;
+      disparity.at<float>(y, x) = static_cast<float>(best + p.min_disparity);
+    }
+  return disparity;
+}
+
+Params plainParams(int D, int min_disparity) {
+  Params p;
+  p.algorithm = "nerv_sgm";
+  p.num_disparities = D;
+  p.min_disparity = min_disparity;
+  p.subpixel = false;
+  p.uniqueness_ratio = 0;
+  p.lr_max_diff = -1;
+  p.speckle_window_size = 0;
+  p.threads = 2;
+  return p;
+}
+
+// A scene with a foreground square over a background: right(x) is the scene,
+// left(x) = right(x - d) with d = fg_disp on the square and bg_disp elsewhere.
+struct OcclusionScene {
+  cv::Mat left, right;
+  int square_x = 60, square_w = 40, y0 = 20, y1 = 76, fg = 20, bg = 8;
+};
+OcclusionScene occlusionScene() {
+  OcclusionScene s;
+  const int rows = 96, cols = 160;
+  const cv::Mat bg = texture(rows, cols + 64, 11, 1.0), fg = texture(rows, cols + 64, 12, 1.0);
+  s.right.create(rows, cols, CV_8UC1);
+  s.left.create(rows, cols, CV_8UC1);
+  auto inSquare = [&](int y, int xr) { return y >= s.y0 && y < s.y1 && xr >= s.square_x && xr < s.square_x + s.square_w; };
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x) {
+      s.right.at<uint8_t>(y, x) = inSquare(y, x) ? fg.at<uint8_t>(y, x + 32) : bg.at<uint8_t>(y, x + 32);
+      const int xf = x - s.fg;  // right pixel if this left pixel is on the square
+      s.left.at<uint8_t>(y, x) = inSquare(y, xf) ? fg.at<uint8_t>(y, xf + 32)
+                                                 : bg.at<uint8_t>(y, x - s.bg + 32);
+    }
+  return s;
+}
+
+}  // namespace
+
+TEST(StereoSgm, CensusMatchesReference) {
+  const cv::Mat img = texture(30, 41, 1, 0.0);
+  cv::Mat census;
+  censusTransform(img, 9, 7, census);
+  const auto ref = referenceCensus(img, 9, 7);
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x) ASSERT_EQ(census.ptr<uint32_t>(y)[x], ref[y * img.cols + x]) << x << "," << y;
+}
+
+TEST(StereoSgm, MatchesReferenceIntegerDisparities) {
+  // D = 32 runs the AVX2 path (where built), D = 48 the scalar fallback; min_disparity shifts.
+  for (const auto& [D, min_d] : std::vector<std::pair<int, int>>{{32, 0}, {48, 3}, {64, 5}}) {
+    const cv::Mat right = texture(40, 96, 2, 1.2);
+    const cv::Mat left = shifted(right, 9.0);
+    const Params p = plainParams(D, min_d);
+    cv::Mat disparity;
+    createOwnSgm(p)->compute(left, right, disparity);
+    cv::Mat expected = referenceSgm(left, right, p);
+    expected.setTo(0.0f, expected <= 0.0f);  // nerv encodes disparity 0 as invalid
+    ASSERT_EQ(cv::countNonZero(disparity != expected), 0) << "D " << D << " min " << min_d;
+    EXPECT_GT(cv::countNonZero(disparity == 9.0f), disparity.total() / 2);  // not vacuous
+  }
+}
+
+TEST(StereoSgm, PathStepSimdEqualsScalar) {
+  if (!pathSimdAvailable()) GTEST_SKIP() << "built without AVX2";
+  std::mt19937 rng(7);
+  const int D = 128;
+  std::vector<uint8_t> cost(D), prev(D), a(D), b(D);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const PathPenalties pen{static_cast<int>(rng() % 20), 0};
+    PathPenalties q = pen;
+    q.p2 = pen.p1 + 1 + static_cast<int>(rng() % (255 - 32 - pen.p1));
+    for (auto& c : cost) c = rng() % 33;
+    for (auto& v : prev) v = rng() % (33 + q.p2);  // any reachable path value, up to max C + P2
+    const uint8_t prev_min = *std::min_element(prev.begin(), prev.end());
+    const uint8_t ma = pathStepScalar(cost.data(), prev.data(), prev_min, a.data(), D, q);
+    const uint8_t mb = pathStepSimd(cost.data(), prev.data(), prev_min, b.data(), D, q);
+    ASSERT_EQ(a, b);
+    ASSERT_EQ(ma, mb);
+  }
+}
+
+TEST(StereoSgm, SimdMatcherEqualsScalarMatcher) {
+  const OcclusionScene s = occlusionScene();
+  Params p;
+  p.num_disparities = 64;
+  cv::Mat d_simd, c_simd, d_scalar, c_scalar;
+  createOwnSgm(p, true)->compute(s.left, s.right, d_simd, c_simd);
+  createOwnSgm(p, false)->compute(s.left, s.right, d_scalar, c_scalar);
+  EXPECT_EQ(cv::countNonZero(d_simd != d_scalar), 0);
+  EXPECT_EQ(cv::countNonZero(c_simd != c_scalar), 0);
+  EXPECT_GT(cv::countNonZero(d_simd), d_simd.total() / 2);
+}
+
+TEST(StereoSgm, ThreadsDoNotChangeTheResult) {
+  const OcclusionScene s = occlusionScene();
+  Params p;
+  p.num_disparities = 64;
+  p.threads = 1;
+  cv::Mat one, two;
+  createOwnSgm(p)->compute(s.left, s.right, one);
+  p.threads = 2;
+  createOwnSgm(p)->compute(s.left, s.right, two);
+  EXPECT_EQ(cv::countNonZero(one != two), 0);
+}
+
+TEST(StereoSgm, ShiftedTextureRecoversConstantDisparity) {
+  // Integer shifts come back exact; fractional ones within 0.25 px at the median
+  // (the equiangular fit on the aggregated cost keeps a bias of up to ~0.2 px
+  // toward integers, see docs/stereo.md).
+  for (double truth : {10.0, 17.0, 10.5, 13.25}) {
+    const cv::Mat base = texture(80, 200, 3, 1.5);
+    const cv::Mat left = shifted(base, truth / 2), right = shifted(base, -truth / 2);
+    Params p;
+    p.num_disparities = 32;
+    cv::Mat disparity, confidence;
+    StereoMatcher::create(p)->compute(left, right, disparity, confidence);
+    const cv::Rect interior(40, 8, 150, 64);  // away from borders and the left strip with no match
+    const cv::Mat d = disparity(interior);
+    std::vector<float> values;
+    int close = 0, near = 0;
+    for (int y = 0; y < d.rows; ++y)
+      for (int x = 0; x < d.cols; ++x)
+        if (d.at<float>(y, x) > 0) {
+          values.push_back(d.at<float>(y, x));
+          close += std::abs(d.at<float>(y, x) - truth) <= 0.25;
+          near += std::abs(d.at<float>(y, x) - truth) <= 0.5;
+        }
+    ASSERT_GT(values.size(), 0.9 * d.total()) << truth;
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    EXPECT_NEAR(values[values.size() / 2], truth, 0.25) << "median disparity";
+    if (truth == std::floor(truth))
+      EXPECT_GT(close, 0.95 * values.size()) << "disparity " << truth << " within 0.25 px";
+    else
+      EXPECT_GT(near, 0.9 * values.size()) << "disparity " << truth << " within 0.5 px";
+    // confidence: within 0..1, zero exactly where invalid
+    double lo, hi;
+    cv::minMaxLoc(confidence, &lo, &hi);
+    EXPECT_GE(lo, 0.0);
+    EXPECT_LE(hi, 1.0);
+    EXPECT_EQ(cv::countNonZero((confidence > 0) != (disparity > 0)), 0);
+  }
+}
+
+TEST(StereoSgm, LeftRightCheckInvalidatesOccludedStrip) {
+  const OcclusionScene s = occlusionScene();
+  Params p;
+  p.num_disparities = 32;
+  p.speckle_window_size = 0;
+  cv::Mat checked, unchecked;
+  StereoMatcher::create(p)->compute(s.left, s.right, checked);
+  p.lr_max_diff = -1;
+  p.uniqueness_ratio = 0;
+  StereoMatcher::create(p)->compute(s.left, s.right, unchecked);
+  // occluded in the right view: left x in [square_x + bg, square_x + fg), rows of the square
+  const cv::Rect strip(s.square_x + s.bg + 1, s.y0 + 4, s.fg - s.bg - 2, s.y1 - s.y0 - 8);
+  const double invalid_checked = 1.0 - cv::countNonZero(checked(strip)) / double(strip.area());
+  const double invalid_unchecked = 1.0 - cv::countNonZero(unchecked(strip)) / double(strip.area());
+  EXPECT_GT(invalid_checked, 0.8);
+  EXPECT_LT(invalid_unchecked, 0.2);
+  // visible surfaces keep their disparity
+  const cv::Rect fg(s.square_x + s.fg + 4, s.y0 + 4, s.square_w - 8, s.y1 - s.y0 - 8);
+  const cv::Rect bg(s.square_x + s.fg + s.square_w + 6, 8, 30, 80);
+  EXPECT_GT(cv::countNonZero(cv::abs(checked(fg) - s.fg) <= 1.0), 0.9 * fg.area());
+  EXPECT_GT(cv::countNonZero(cv::abs(checked(bg) - s.bg) <= 1.0), 0.9 * bg.area());
+}
+
+TEST(StereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
+  const OcclusionScene s = occlusionScene();
+  for (const char* name : {"nerv_sgm", "sgbm", "sgbm_full", "sgbm_wls", "bm"}) {
+    for (int downscale : {1, 2}) {
+      Params p;
+      p.algorithm = name;
+      p.num_disparities = 64;
+      p.downscale = downscale;
+      cv::Mat disparity, confidence;
+      auto m = StereoMatcher::create(p);
+      m->compute(s.left, s.right, disparity, confidence);
+      ASSERT_EQ(disparity.size(), s.left.size()) << name;
+      ASSERT_EQ(confidence.size(), s.left.size()) << name;
+      ASSERT_EQ(disparity.type(), CV_32FC1);
+      const cv::Rect bg(s.square_x + s.fg + s.square_w + 6, 8, 30, 80);
+      EXPECT_GT(cv::countNonZero(cv::abs(disparity(bg) - s.bg) <= 1.5), 0.6 * bg.area())
+          << name << " downscale " << downscale;
+    }
+  }
+}
+
+TEST(StereoSgm, FusedWinnersEqualSeparateSteps) {
+  // random path costs with many ties; every D the fused loop takes, min_disparity > 0
+  std::mt19937 rng(3);
+  for (int D : {32, 96, 128}) {
+    const int cols = 300;
+    std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(static_cast<size_t>(cols) * D));
+    for (auto& r : rows)
+      for (auto& v : r) v = static_cast<uint8_t>(40 + rng() % 24);
+    const uint8_t* const paths[4] = {rows[0].data(), rows[1].data(), rows[2].data(), rows[3].data()};
+    WinnerOptions opt;
+    opt.uniqueness_ratio = 3;
+    std::vector<int16_t> best_a(cols), best_b(cols), right_a(cols), right_b(cols);
+    std::vector<float> disp_a(cols), disp_b(cols), conf_a(cols), conf_b(cols);
+    std::vector<uint8_t> sum, cost;
+    std::vector<int16_t> index;
+    selectWinnersFromPaths(paths, cols, D, 5, opt, best_a.data(), disp_a.data(), conf_a.data(),
+                           right_a.data(), sum, cost, index);
+    sum.resize(static_cast<size_t>(cols) * D);
+    averagePaths(paths, sum.size(), sum.data());
+    selectLeftWinners(sum.data(), cols, D, opt, best_b.data(), disp_b.data(), conf_b.data());
+    selectRightWinners(sum.data(), cols, D, 5, right_b.data(), cost, index);
+    refineSubpixel(paths, cols, D, best_b.data(), disp_b.data());
+    EXPECT_EQ(best_a, best_b) << D;
+    EXPECT_EQ(right_a, right_b) << D;
+    EXPECT_EQ(disp_a, disp_b) << D;
+    EXPECT_EQ(conf_a, conf_b) << D;
+    EXPECT_GT(std::count(best_a.begin(), best_a.end(), -1), 0) << "uniqueness test exercised";
+    EXPECT_GT(std::count_if(best_a.begin(), best_a.end(), [](int16_t b) { return b >= 0; }), 0);
+  }
+}
