@@ -87,6 +87,7 @@ std::vector<Frame> loadKitti(const std::string& dir, StereoCamera& cam) {
   for (int i = 0;; ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "%010d", i);
+    if (!std::filesystem::exists(dir + "/left/" + name + ".png")) break;  // end of the sequence
     const cv::Mat l = cv::imread(dir + "/left/" + name + ".png", cv::IMREAD_GRAYSCALE);
     const cv::Mat r = cv::imread(dir + "/right/" + name + ".png", cv::IMREAD_GRAYSCALE);
     if (l.empty() || r.empty()) break;
