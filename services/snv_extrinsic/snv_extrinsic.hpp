@@ -38,6 +38,10 @@ struct Params {
   int ground_lower_margin_px = 10;       // without a ground model: rows below cy + this [px]
   int min_ground_normals = 50;           // fewer ground normals: no pose ("no_ground")
 
+  // Road plane refinement (ground_plane_fit.hpp).
+  bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
+  float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
+
   // Pose quality and filter.
   float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this
   float min_confidence = 0.05f;          // below: status "low_confidence", pose not used
