@@ -47,6 +47,7 @@ PoseFilterParams filterParams(const Params& p) {
   f.pitch_measurement_var_deg2 = p.filter_pitch_meas_var_deg2;
   f.roll_measurement_var_deg2 = p.filter_roll_meas_var_deg2;
   f.height_measurement_var_m2 = p.filter_height_meas_var_m2;
+  f.adaptive = p.filter_adaptive;
   return f;
 }
 
@@ -101,6 +102,8 @@ Params readParams(ConfigSection& s) {
   s.get("min_ground_normals", p.min_ground_normals, 1, 10000000);
   s.get("plane_fit", p.plane_fit);
   s.get("plane_tukey_k", p.plane_tukey_k, 1.0, 20.0);
+  s.get("residual_entropy_bin", p.residual_entropy_bin, 1e-4, 1.0);
+  s.get("filter_adaptive", p.filter_adaptive);
   s.get("entropy_full_scale_bits", p.entropy_full_scale_bits, 0.1, 30.0);
   s.get("min_confidence", p.min_confidence, 0.0, 1.0);
   s.get("min_height_m", p.min_height_m, 0.0, 100.0);
@@ -201,6 +204,14 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
         pose.instant_roll_deg = normalRollDeg(planeNormal(plane, cam));
         instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
         pose.instant_height_m = medianCameraHeight(points, instant_normal);
+        // Entropy of the relative residuals (d - d_plane) / d of every ground
+        // sample (1 % bins = 1.65 cm of height at 1.65 m): SGBM noise fills a
+        // few bins; trap pixels that pass the ground tests widen it.
+        std::vector<float> res(samples.size());
+        for (size_t i = 0; i < samples.size(); ++i)
+          res[i] = static_cast<float>(samples[i].d - plane.disparity(cam, samples[i].u, samples[i].v)) /
+                   samples[i].d;
+        pose.entropy = sampleEntropyBits(res, params_.residual_entropy_bin);
       }
     }
     pose.confidence = entropyConfidence(pose.entropy, params_.entropy_full_scale_bits);

@@ -41,6 +41,7 @@ struct Params {
   // Road plane refinement (ground_plane_fit.hpp).
   bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
   float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
+  float residual_entropy_bin = 0.01f;    // entropy bin of the relative plane residuals (d - d_plane) / d
 
   // Pose quality and filter.
   float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this
@@ -52,6 +53,7 @@ struct Params {
   float filter_pitch_meas_var_deg2 = 0.04f;     // one frame's pitch variance [deg^2]
   float filter_roll_meas_var_deg2 = 0.04f;      // one frame's roll variance [deg^2]
   float filter_height_meas_var_m2 = 4e-4f;      // one frame's height variance [m^2]
+  bool filter_adaptive = true;                  // inflate the prior to the innovation when it is larger (tracks swings)
 
   // ROI classes (roi_normal_stats.hpp).
   float upright_tolerance_deg = 30.0f;          // 90 +- this from the ground normal = upright
