@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "adaptive_mean_shift.hpp"
+#include "super_snv.hpp"
 
 namespace nerv::snv {
 
@@ -34,6 +35,27 @@ float windowEntropyBits(const std::vector<float>& sorted, float centre, float fr
     ++run;
   }
   flush();
+  return static_cast<float>(std::max(0.0, h));
+}
+
+float sampleEntropyBits(std::vector<float>& values, float bin) {
+  if (values.empty() || !(bin > 0)) return 0.0f;
+  sortAngles(values);
+  const double n = static_cast<double>(values.size());
+  auto binOf = [&](float x) { return static_cast<long long>(std::floor(x / bin + 0.5f)); };
+  double h = 0;
+  long long cur = binOf(values[0]);
+  size_t run = 0;
+  for (float x : values) {
+    const long long k = binOf(x);
+    if (k != cur) {
+      h -= run / n * std::log2(run / n);
+      cur = k;
+      run = 0;
+    }
+    ++run;
+  }
+  h -= run / n * std::log2(run / n);
   return static_cast<float>(std::max(0.0, h));
 }
 

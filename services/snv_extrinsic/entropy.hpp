@@ -20,6 +20,12 @@ namespace nerv::snv {
 float windowEntropyBits(const std::vector<float>& sorted, float centre, float fraction,
                         float bin_deg);
 
+// Shannon entropy [bits] of the whole sample binned at bin (bins centred on 0),
+// e.g. the disparity residuals of every ground sample to the fitted road plane:
+// SGBM noise alone fills a few bins; trap pixels (puddle mirrors, wrong
+// matches) that pass the ground tests spread into many. Sorts `values`.
+float sampleEntropyBits(std::vector<float>& values, float bin);
+
 float entropyConfidence(float entropy_bits, float full_scale_bits);
 
 }  // namespace nerv::snv

@@ -80,7 +80,8 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
         const float z = fb / d[u];
         dst.push_back({u, v, cv::Vec3f(row.nx[k], row.ny[k], row.nz[k]),
                        cv::Vec3f(static_cast<float>((u - cam.cx) / cam.fx) * z,
-                                 static_cast<float>((v - cam.cy) / cam.fy) * z, z)});
+                                 static_cast<float>((v - cam.cy) / cam.fy) * z, z),
+                       d[u]});
       }
     }
   });

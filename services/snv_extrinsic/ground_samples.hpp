@@ -33,6 +33,7 @@ struct GroundSample {
   int u = 0, v = 0;
   cv::Vec3f n;  // unit normal (up)
   cv::Vec3f p;  // the pixel's 3D point [m]
+  float d = 0;  // the pixel's disparity [px]
 };
 
 // The image rows that can hold ground samples ([0,0) when none can).

@@ -20,7 +20,11 @@ class ScalarKalman {
     if (initialised_) p_ += process_var;
   }
   // First measurement initialises the state with the measurement variance.
-  void update(float z, float measurement_var);
+  // adaptive: before the gain, the prior variance is raised to innovation^2 -
+  // measurement_var when that is larger (the random walk underestimated the
+  // motion: a +-2 deg pitch swing moves ~1 deg per frame), so the state tracks
+  // fast motion and still averages the noise when the pose is steady.
+  void update(float z, float measurement_var, bool adaptive = false);
 
  private:
   bool initialised_ = false;
@@ -34,6 +38,7 @@ struct PoseFilterParams {
   float pitch_measurement_var_deg2 = 0.04f;  // variance of one frame's pitch [deg^2]
   float roll_measurement_var_deg2 = 0.04f;   // variance of one frame's roll [deg^2]
   float height_measurement_var_m2 = 4e-4f;   // variance of one frame's height [m^2]
+  bool adaptive = false;                      // innovation-based prior inflation (ScalarKalman::update)
 };
 
 class PoseFilter {

@@ -38,6 +38,11 @@ struct Params {
   int ground_lower_margin_px = 10;       // without a ground model: rows below cy + this [px]
   int min_ground_normals = 50;           // fewer ground normals: no pose ("no_ground")
 
+  // Road plane refinement (ground_plane_fit.hpp).
+  bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
+  float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
+  float residual_entropy_bin = 0.01f;    // entropy bin of the relative plane residuals (d - d_plane) / d
+
   // Pose quality and filter.
   float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this
   float min_confidence = 0.05f;          // below: status "low_confidence", pose not used
@@ -48,6 +53,7 @@ struct Params {
   float filter_pitch_meas_var_deg2 = 0.04f;     // one frame's pitch variance [deg^2]
   float filter_roll_meas_var_deg2 = 0.04f;      // one frame's roll variance [deg^2]
   float filter_height_meas_var_m2 = 4e-4f;      // one frame's height variance [m^2]
+  bool filter_adaptive = true;                  // inflate the prior to the innovation when it is larger (tracks swings)
 
   // ROI classes (roi_normal_stats.hpp).
   float upright_tolerance_deg = 30.0f;          // 90 +- this from the ground normal = upright

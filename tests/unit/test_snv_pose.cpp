@@ -5,9 +5,11 @@
 #include <cmath>
 #include <numeric>
 
+#include "ground_plane_fit.hpp"
 #include "pose_filter.hpp"
 #include "snv_extrinsic.hpp"
 #include "snv_test_scenes.hpp"
+#include "super_snv.hpp"
 
 namespace nerv::snv {
 namespace {
@@ -44,6 +46,41 @@ TEST(snvPose, RecoversPitchRollHeightOfAnalyticRoad) {
       EXPECT_NEAR(r.ground_normal[2], n[2], 1e-3);
     }
   }
+}
+
+// The disparity plane fit against the analytic road: exact without noise, and
+// from a start 0.2 / 0.5 deg off it keeps to the road when ~15 % of the points are a
+// sidewalk 15 cm higher on one side and 10 % are gross outliers.
+TEST(snvPlaneFit, RecoversRoadPlaneDespiteSidewalkAndOutliers) {
+  const StereoCamera c = test::kittiCamera();
+  const double pitch = 1.0, roll = -0.7, h = 1.6;
+  const cv::Vec3d n = test::roadNormal(pitch, roll);
+  cv::RNG rng(7);
+  std::vector<PlanePoint> pts;
+  for (int v = 200; v < c.height; v += 4)
+    for (int u = 0; u < c.width; u += 4) {
+      const bool sidewalk = u > 0.85 * c.width;
+      double d = test::planeDisparity(c, n, sidewalk ? h - 0.15 : h, u, v);
+      if (d < 5) continue;
+      d += rng.gaussian(0.2);
+      if (rng.uniform(0.0, 1.0) < 0.1) d += rng.uniform(-10.0, 10.0);
+      pts.push_back({float(u), float(v), float(d)});
+    }
+  const DisparityPlane start = planeFromNormal(
+      cv::Vec3f(test::roadNormal(pitch + 0.2, roll + 0.5)), float(h + 0.02), c);
+  PlaneFitParams fp;
+  fp.tukey_k = 2.5f;
+  const DisparityPlane fit = fitDisparityPlane(pts, c, fp, &start);
+  ASSERT_TRUE(fit.valid);
+  const cv::Vec3f fn = planeNormal(fit, c);
+  EXPECT_NEAR(normalPitchDeg(fn), pitch, 0.05);
+  EXPECT_NEAR(normalRollDeg(fn), roll, 0.05);
+  EXPECT_NEAR(planeHeightM(fit, c), h, 0.01);
+  // planeFromNormal is the inverse of planeNormal / planeHeightM.
+  const DisparityPlane exact = planeFromNormal(cv::Vec3f(n), float(h), c);
+  EXPECT_NEAR(normalRollDeg(planeNormal(exact, c)), roll, 1e-3);
+  EXPECT_NEAR(planeHeightM(exact, c), h, 1e-5);
+  EXPECT_NEAR(exact.disparity(c, 600, 300), test::planeDisparity(c, n, h, 600, 300), 1e-3);
 }
 
 TEST(snvPose, NoGroundMeansNoPose) {

@@ -2,10 +2,10 @@
 // truth (nerv_synth in-process: render -> SGBM as in the brief -> process()).
 // Targets (issue 6): |pitch error| and |roll error| <= 0.1 deg at the 95th
 // percentile, height within 2 cm; the entropy lower on clean than on trapped frames.
-// MEASURED (docs/snv.md): height is within 2 cm, pitch p95 0.06-0.18 deg and roll
-// p95 0.26-0.52 deg are NOT within 0.1 deg, and the entropy does not separate
-// wet_road from urban. The bounds below guard today's accuracy against
-// regressions; the 0.1 deg target stays open (see docs/snv.md "Accuracy").
+// MEASURED (docs/snv.md, instant pose): roll p95 0.015-0.034 deg (target MET,
+// from the robust road plane), height within 2 cm (met), pitch p95 0.06 deg on
+// urban (met) but 0.18 deg on pitch_oscillation (NOT met: regression bound);
+// entropy of the plane residuals lower on urban than on wet_road (met, means).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,6 +27,7 @@ namespace {
 
 struct FrameResult {
   double pitch_err_deg, roll_err_deg, height_err_m, entropy_bits;
+  double pub_pitch_err_deg, pub_roll_err_deg, pub_height_err_m;  // published (filtered) pose
   double trap_share;  // share of ground-region grid pixels inside a trap
   bool valid;
 };
@@ -58,6 +59,9 @@ std::vector<FrameResult> runScene(const std::string& preset, int frames, int str
     fr.roll_err_deg = r.pose.instant_roll_deg - pose.roll_deg;
     fr.height_err_m = r.pose.instant_height_m - pose.height_m;
     fr.entropy_bits = r.pose.entropy;
+    fr.pub_pitch_err_deg = r.pose.pitch_deg - pose.pitch_deg;
+    fr.pub_roll_err_deg = r.pose.roll_deg - pose.roll_deg;
+    fr.pub_height_err_m = r.pose.height_m - pose.height_m;
     int in_region = 0, trapped = 0;
     for (int v = static_cast<int>(cam.cy) + 10; v < cam.height; v += 4)
       for (int u = 0; u < cam.width; u += 4) {
@@ -66,9 +70,9 @@ std::vector<FrameResult> runScene(const std::string& preset, int frames, int str
       }
     fr.trap_share = double(trapped) / in_region;
     std::printf("%-17s frame %3d: true pitch %6.3f roll %6.3f h %.3f | err pitch %+.3f roll %+.3f "
-                "h %+.3f m | H %.2f bits conf %.2f samples %d traps %.1f%% %s\n",
+                "h %+.3f m | published %+.3f %+.3f %+.3f | H %.2f bits conf %.2f samples %d traps %.1f%% %s\n",
                 preset.c_str(), f, pose.pitch_deg, pose.roll_deg, pose.height_m, fr.pitch_err_deg,
-                fr.roll_err_deg, fr.height_err_m, r.pose.entropy, r.pose.confidence, r.ground_samples,
+                fr.roll_err_deg, fr.height_err_m, fr.pub_pitch_err_deg, fr.pub_roll_err_deg, fr.pub_height_err_m, r.pose.entropy, r.pose.confidence, r.ground_samples,
                 100 * fr.trap_share, r.pose.status.c_str());
     out.push_back(fr);
   }
@@ -80,19 +84,26 @@ struct Summary {
 };
 
 Summary summarise(const std::string& name, const std::vector<FrameResult>& res) {
-  std::vector<double> p, r, h, e;
+  std::vector<double> p, r, h, e, pp, pr, ph;
   for (const FrameResult& f : res) {
     EXPECT_TRUE(f.valid) << name;
     p.push_back(std::abs(f.pitch_err_deg));
     r.push_back(std::abs(f.roll_err_deg));
     h.push_back(std::abs(f.height_err_m));
     e.push_back(f.entropy_bits);
+    pp.push_back(std::abs(f.pub_pitch_err_deg));
+    pr.push_back(std::abs(f.pub_roll_err_deg));
+    ph.push_back(std::abs(f.pub_height_err_m));
   }
   const Summary s{percentile(p, 0.95), percentile(r, 0.95), percentile(h, 0.95),
                   std::accumulate(e.begin(), e.end(), 0.0) / e.size()};
   std::printf("%s: |pitch err| p95 %.3f deg, |roll err| p95 %.3f deg, |height err| p95 %.3f m, "
               "mean entropy %.2f bits\n",
               name.c_str(), s.pitch95, s.roll95, s.height95, s.entropy_mean);
+  std::printf("%s published (filtered): |pitch err| p95 %.3f deg, |roll err| p95 %.3f deg, "
+              "|height err| p95 %.3f m; entropy min %.2f max %.2f\n",
+              name.c_str(), percentile(pp, 0.95), percentile(pr, 0.95), percentile(ph, 0.95),
+              *std::min_element(e.begin(), e.end()), *std::max_element(e.begin(), e.end()));
   ::testing::Test::RecordProperty(name + "_pitch_p95_deg", std::to_string(s.pitch95));
   ::testing::Test::RecordProperty(name + "_roll_p95_deg", std::to_string(s.roll95));
   ::testing::Test::RecordProperty(name + "_height_p95_m", std::to_string(s.height95));
@@ -103,21 +114,22 @@ TEST(snvSyntheticPose, PitchOscillationMeetsTargets) {
   // 14 frames at 10 fps over the first 1.4 s: a full +-2 deg pitch swing with
   // heave and roll, before the climb 50 m ahead enters the 30 m ground range.
   const Summary s = summarise("pitch_oscillation", runScene("pitch_oscillation", 14, 1));
-  EXPECT_LE(s.pitch95, 0.25);  // target 0.1 (not met)
-  EXPECT_LE(s.roll95, 0.7);    // target 0.1 (not met)
+  EXPECT_LE(s.pitch95, 0.25);  // REGRESSION BOUND: target 0.1 not met (0.18 measured)
+  EXPECT_LE(s.roll95, 0.1);    // target
   EXPECT_LE(s.height95, 0.025);
 }
 
 TEST(snvSyntheticPose, FlatRoadAndWetRoad) {
   const Summary urban = summarise("urban", runScene("urban", 6, 3));
   EXPECT_LE(urban.pitch95, 0.1);
-  EXPECT_LE(urban.roll95, 0.4);  // target 0.1 (not met)
+  EXPECT_LE(urban.roll95, 0.1);  // target
   EXPECT_LE(urban.height95, 0.02);
   // wet_road: the same street with puddles mirroring the scene (trap pixels on
-  // the road). Measured, not asserted: the window entropy of the pitch sample is
-  // ~4.8 bits on both (urban 4.83, wet_road 4.80), so it does not flag the traps.
+  // the road). The entropy of the plane residuals is higher with traps (target):
+  // measured urban mean 2.81 bits, wet_road 3.29 bits.
   const Summary wet = summarise("wet_road", runScene("wet_road", 6, 3));
   EXPECT_LE(wet.height95, 0.06);
+  EXPECT_LT(urban.entropy_mean + 0.25, wet.entropy_mean);
 }
 
 }  // namespace
