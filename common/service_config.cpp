@@ -89,6 +89,17 @@ void ServiceConfig::finish() {
   if (check_only_) std::exit(0);  // --check-config: the config is valid, nothing else to do
 }
 
+JoinSettings readJoinSettings(ConfigSection& section, int default_queue) {
+  JoinSettings j;
+  j.queue = default_queue;
+  double timeout_ms = j.timeout_us / 1000.0;
+  section.get("queue", j.queue, 1, 100);
+  section.get("join_capacity", j.capacity, 1, 1000);
+  section.get("join_timeout_ms", timeout_ms, 1, 60000);
+  j.timeout_us = static_cast<int64_t>(timeout_ms * 1000);
+  return j;
+}
+
 int runService(const std::string& service, int argc, char** argv,
                const std::function<int(ServiceConfig&)>& body) {
   try {

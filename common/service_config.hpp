@@ -6,6 +6,7 @@
 //             [--check-config]   (validate the config and exit 0, or print the error and exit 2)
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -33,6 +34,15 @@ class ServiceConfig {
   NodeOptions options_;
   bool check_only_ = false;
 };
+
+// Settings of a service that joins two inputs by seq (see seq_join.hpp):
+// queue (LCM queue per input), join_capacity, join_timeout_ms.
+struct JoinSettings {
+  int queue = 2;
+  int capacity = 8;
+  int64_t timeout_us = 2000000;
+};
+JoinSettings readJoinSettings(ConfigSection& section, int default_queue);
 
 // Runs body(config) and turns configuration / start-up errors into one line on
 // stderr ("stixel: unknown config key 'stixel.foo'") and exit code 2.

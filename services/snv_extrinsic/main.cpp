@@ -12,11 +12,7 @@ namespace {
 
 int serve(ServiceConfig& config) {
   const snv::Params params = snv::readParams(config.section());
-  int queue = 2, join_capacity = 8;
-  double join_timeout_ms = 2000;
-  config.section().get("queue", queue, 1, 100);
-  config.section().get("join_capacity", join_capacity, 1, 1000);
-  config.section().get("join_timeout_ms", join_timeout_ms, 1, 60000);
+  const JoinSettings join_settings = readJoinSettings(config.section(), 2);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -53,7 +49,7 @@ int serve(ServiceConfig& config) {
   };
 
   SeqJoin<disparity_t, stixels_t> join(
-      join_capacity, static_cast<int64_t>(join_timeout_ms * 1000), process,
+      join_settings.capacity, join_settings.timeout_us, process,
       [&](const std::optional<disparity_t>& d, const std::optional<stixels_t>& s) {
         const int64_t seq = d ? d->header.seq : s->header.seq;
         node.countDropped();
@@ -66,13 +62,13 @@ int serve(ServiceConfig& config) {
     if (Problem p = checkDisparity(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
     join.pushA(msg.header.seq, msg, nowUtime());
-  }, queue);
+  }, join_settings.queue);
   node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkStixels(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
     join.pushB(msg.header.seq, msg, nowUtime());
-  }, queue + 2);
+  }, join_settings.queue + 2);
   node.onTick([&] { join.expire(nowUtime()); });
   return node.spin();
 }

@@ -14,11 +14,7 @@ namespace {
 
 int serve(ServiceConfig& config) {
   const validator::Params params = validator::readParams(config.section());
-  int queue = 5, join_capacity = 8;
-  double join_timeout_ms = 2000;
-  config.section().get("queue", queue, 1, 100);
-  config.section().get("join_capacity", join_capacity, 1, 1000);
-  config.section().get("join_timeout_ms", join_timeout_ms, 1, 60000);
+  const JoinSettings join_settings = readJoinSettings(config.section(), 5);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -48,7 +44,7 @@ int serve(ServiceConfig& config) {
   };
 
   SeqJoin<stixels_t, surface_normals_t> join(
-      join_capacity, static_cast<int64_t>(join_timeout_ms * 1000),
+      join_settings.capacity, join_settings.timeout_us,
       [&](const stixels_t& s, const surface_normals_t& n) { publish(s, &n); },
       [&](const std::optional<stixels_t>& s, const std::optional<surface_normals_t>& n) {
         if (s) {
@@ -67,13 +63,13 @@ int serve(ServiceConfig& config) {
     if (Problem p = checkStixels(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
     join.pushA(msg.header.seq, msg, nowUtime());
-  }, queue);
+  }, join_settings.queue);
   node.subscribe<surface_normals_t>("SURFACE_NORMALS", [&](const surface_normals_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkSurfaceNormals(msg))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
     join.pushB(msg.header.seq, msg, nowUtime());
-  }, queue);
+  }, join_settings.queue);
   node.onTick([&] { join.expire(nowUtime()); });
   return node.spin();
 }
