@@ -10,20 +10,21 @@ tmp=$(mktemp -d)
 trap 'stop_children; rm -rf "$tmp"' EXIT
 json() { "$BIN/nerv_export" "$1" --json --no-blobs; }
 
-# 1. shards
+# 1. shards: a 20-frame sequence
+seq20=$(synthetic_sequence urban 20)
 cp "$NERV_ROOT/config/pipeline.yaml" "$tmp/sharded.yaml"
 printf 'run:\n  shards:\n    stereo_matcher: 2\n' >>"$tmp/sharded.yaml"
-"$NERV_ROOT/tools/nerv" run --data "$data" --repeat 2 --out "$tmp/shards" --config "$tmp/sharded.yaml" \
-  --rate 5 >/dev/null 2>&1 || fail "sharded run"
+"$NERV_ROOT/tools/nerv" run --data "$seq20" --out "$tmp/shards" --config "$tmp/sharded.yaml" \
+  --rate 10 >/dev/null 2>&1 || fail "sharded run"
 json "$tmp/shards/nerv.lcmlog" >"$tmp/shards.jsonl"
 seqs=$(grep '"channel":"DISPARITY"' "$tmp/shards.jsonl" | grep -o '"header":{"seq":[0-9]*' | sort)
-[[ $(echo "$seqs" | wc -l) -eq 12 && $(echo "$seqs" | sort -u | wc -l) -eq 12 ]] \
-  || fail "12 frames should give 12 distinct DISPARITY messages: $(echo $seqs)"
+[[ $(echo "$seqs" | wc -l) -eq 20 && $(echo "$seqs" | sort -u | wc -l) -eq 20 ]] \
+  || fail "20 frames should give 20 distinct DISPARITY messages: $(echo $seqs)"
 grep '"channel":"NERV_HEALTH"' "$tmp/shards.jsonl" | grep '"service":"stereo_matcher"' >"$tmp/sh.jsonl" || true
 for k in 0 1; do
-  grep -q "\"instance\":\"shard$k\",.*\"frames_out\":6," "$tmp/sh.jsonl" || fail "shard$k did not produce 6 frames"
+  grep -q "\"instance\":\"shard$k\",.*\"frames_out\":10," "$tmp/sh.jsonl" || fail "shard$k did not produce 10 frames"
 done
-pass "two stereo_matcher shards: 12 frames, each exactly once, 6 per shard"
+pass "two stereo_matcher shards: 20 frames, each exactly once, 10 per shard"
 
 # 2. prefixes: two pipelines at once on one bus
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 5 >"$tmp/front.txt" 2>&1 &

@@ -112,10 +112,16 @@ int status(const Options& o) {
   return 0;
 }
 
-int up(const Options& o) {
+int up(const Options& flags) {
+  Options o = flags;
   ConfigSection root(loadConfigFile(o.config), "");
-  for (const char* k : {"lcm_url", "channel_prefix", "limits", "stereo_matcher", "stixel",
-                        "snv_extrinsic", "validator", "source"})
+  // The bus and prefix come from the flags, else from the config (as the services read them).
+  std::string config_url, config_prefix;
+  root.get("lcm_url", config_url);
+  root.get("channel_prefix", config_prefix);
+  if (o.lcm_url.empty()) o.lcm_url = config_url;
+  if (o.prefix.empty()) o.prefix = config_prefix;
+  for (const char* k : {"limits", "stereo_matcher", "stixel", "snv_extrinsic", "validator", "source"})
     root.allow(k);
   ConfigSection run = root.section("run");
   std::string services_csv = "stereo_matcher,stixel,snv_extrinsic,validator";
