@@ -155,7 +155,8 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
   key << fs::absolute(f.left_path).string() << '|' << fs::last_write_time(f.left_path).time_since_epoch().count()
       << '|' << sp.algorithm << sp.num_disparities << '_' << sp.min_disparity << '_' << sp.block_size << '_'
       << sp.p1 << '_' << sp.p2 << '_' << sp.uniqueness_ratio << '_' << sp.speckle_window_size << '_'
-      << sp.speckle_range << '_' << sp.lr_max_diff;
+      << sp.speckle_range << '_' << sp.lr_max_diff << '_' << sp.census_width << 'x' << sp.census_height << '_'
+      << sp.sgm_p1 << '_' << sp.sgm_p2 << '_' << sp.subpixel << '_' << sp.boundary_snap_px << '_' << sp.downscale;
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
   if (fs::exists(path)) {

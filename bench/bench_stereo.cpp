@@ -51,10 +51,11 @@ int main(int argc, char** argv) {
 
   struct Entry { std::string label; Params params; };
   std::vector<Entry> entries;
-  auto add = [&](const std::string& label, const std::string& algorithm, int downscale = 1) {
+  auto add = [&](const std::string& label, const std::string& algorithm, int downscale = 1, int snap = -1) {
     Params p;
     p.algorithm = algorithm;
     p.downscale = downscale;
+    p.boundary_snap_px = snap;
     p.threads = threads;
     if (entries.empty() || only.empty() || only == algorithm) entries.push_back({label, p});
   };
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
   add("sgbm_wls", "sgbm_wls");
   add("nerv_sgm", "nerv_sgm");
   add("nerv_sgm downscale 2", "nerv_sgm", 2);
+  add("nerv_sgm no snap", "nerv_sgm", 1, 0);  // without the fattening correction (boundary_snap.hpp)
 
   // Runs are interleaved (one frame of every algorithm per round) so that load
   // from other processes on a shared computer hits all algorithms alike.

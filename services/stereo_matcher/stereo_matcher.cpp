@@ -4,16 +4,50 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "boundary_snap.hpp"
 #include "opencv_matchers.hpp"
 #include "own_sgm.hpp"
 
 namespace nerv::stereo {
 namespace {
 
-std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
+std::unique_ptr<StereoMatcher> createMatcher(const Params& p) {
   if (p.algorithm == "nerv_sgm") return createOwnSgm(p);
   if (p.algorithm == "sgbm_wls") return createWlsMatcher(p);
   return createOpenCvMatcher(p);
+}
+
+// Half the matching window: how far a window-based cost fattens an object.
+int snapBand(const Params& p) {
+  if (p.boundary_snap_px >= 0) return p.boundary_snap_px;
+  if (p.algorithm == "nerv_sgm") return p.census_width / 2;
+  if (p.algorithm == "bm") return p.bm_block_size / 2;
+  return p.block_size / 2;
+}
+
+// Any matcher followed by the foreground fattening correction.
+class BoundarySnapped : public StereoMatcher {
+ public:
+  BoundarySnapped(std::unique_ptr<StereoMatcher> inner, int band_px) : inner_(std::move(inner)) {
+    params_.band_px = band_px;
+  }
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    inner_->compute(left, right, disparity, confidence);
+    snapDisparityBoundaries(left, disparity, confidence, params_);
+  }
+  std::string name() const override { return inner_->name(); }
+
+ private:
+  std::unique_ptr<StereoMatcher> inner_;
+  BoundarySnapParams params_;
+};
+
+std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
+  auto m = createMatcher(p);
+  const int band = snapBand(p);
+  if (band <= 0) return m;
+  return std::make_unique<BoundarySnapped>(std::move(m), band);
 }
 
 // For slow computers: both views are averaged down by 2 (INTER_AREA), matched

@@ -39,6 +39,10 @@ struct Params {
   int sgm_p2 = 90;                 // penalty for larger changes [census bits]; bits + p2 <= 255
   bool subpixel = true;            // equiangular fit on the aggregated cost; false: integer disparities
   int threads = 2;                 // worker threads of nerv_sgm (1 = run on the caller's thread)
+  // Foreground fattening correction (boundary_snap.hpp): how far inside an object's
+  // disparity boundary its true (intensity) edge may lie [px]. -1 = half the matching
+  // window of the algorithm (census_width / 2, block_size / 2); 0 = off.
+  int boundary_snap_px = -1;
 };
 
 // Declares and reads the keys of the stereo_matcher section; ConfigError names the bad key.

@@ -66,6 +66,7 @@ Params readParams(ConfigSection& c) {
   c.get("sgm_p2", p.sgm_p2, 1, 255);
   c.get("subpixel", p.subpixel);
   c.get("threads", p.threads, 1, 64);
+  c.get("boundary_snap_px", p.boundary_snap_px, -1, 32);
   checkParams(p, c.path());
   return p;
 }
