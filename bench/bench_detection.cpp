@@ -511,6 +511,12 @@ int main(int argc, char** argv) {
           const cv::Scalar col = l.type == "DontCare" ? cv::Scalar(128, 128, 128) : cv::Scalar(255, 0, 0);
           cv::rectangle(img, cv::Point(int(l.x1), int(l.y1)), cv::Point(int(l.x2), int(l.y2)), col, 1);
         }
+        // Stixels: a thin bar each at its foot-to-top rows, hue by depth (red near, blue 40 m+).
+        for (const Stixel& s : st.stixels) {
+          const double t = std::min(1.0, s.depth_m / 40.0);
+          const cv::Scalar col(255 * t, 64, 255 * (1 - t));
+          cv::line(img, cv::Point(s.u + s.width / 2, s.top_row), cv::Point(s.u + s.width / 2, s.bottom_row), col, 1);
+        }
         for (size_t i = 0; i < hyps.size(); ++i) {
           const Box& b = st.hypotheses[i].box;
           const cv::Scalar col = out_all[i] == Outcome::TP ? cv::Scalar(0, 255, 0)

@@ -7,34 +7,50 @@ namespace nerv::stixel {
 
 namespace {
 
-// Depth and lateral gap between a stixel and the group's last member.
-bool joins(const std::vector<const Stixel*>& group, const Stixel& s, const StereoCamera& cam,
-           const GroupingParams& p) {
-  const Stixel& g = *group.back();
-  const float dz = std::abs(g.depth_m - s.depth_m);
-  const float z = std::min(g.depth_m, s.depth_m);
-  const float gap_px = static_cast<float>(s.u - (g.u + g.width));
+// Depth and lateral gap between two stixels (a left of b).
+bool joins(const Stixel& a, const Stixel& b, const StereoCamera& cam, const GroupingParams& p) {
+  const float dz = std::abs(a.depth_m - b.depth_m);
+  const float z = std::min(a.depth_m, b.depth_m);
+  const float gap_px = static_cast<float>(b.u - (a.u + a.width));
   const float lateral_m = std::max(0.0f, gap_px) * z / static_cast<float>(cam.fx);
   return dz <= p.group_depth_gap_m && lateral_m <= p.group_lateral_gap_m;
+}
+
+// Union-find root with path halving.
+size_t root(std::vector<size_t>& parent, size_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
 }
 
 }  // namespace
 
 std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
                                      const GroupingParams& p, const GroupingInput& input) {
-  std::vector<std::vector<const Stixel*>> groups;
-  for (const Stixel& s : stixels) {
-    const size_t n = groups.size();
-    if (n > 0 && joins(groups[n - 1], s, cam, p)) {
-      groups[n - 1].push_back(&s);
-    } else if (n > 1 && groups[n - 1].size() == 1 && joins(groups[n - 2], s, cam, p)) {
-      // One stray stixel (a window, a reflection, a thin post in front) does not
-      // cut an object in two: the object continues behind it.
-      groups[n - 2].push_back(&s);
-      std::swap(groups[n - 2], groups[n - 1]);
-    } else {
-      groups.push_back({&s});
+  // Stixels join when their depth and lateral gaps are small - across empty
+  // strips (no valid disparity inside an object), and across at most one
+  // occupied strip: a stray stixel (a window, a reflection, a thin post in
+  // front) does not cut an object in two. Two stixels of the same strip (an
+  // occluder and the object above it) never join directly.
+  std::vector<size_t> order(stixels.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return stixels[x].u < stixels[y].u; });
+  std::vector<int> strip(order.size());  // rank of the stixel's column among occupied columns
+  for (size_t k = 0; k < order.size(); ++k)
+    strip[k] = k == 0 ? 0 : strip[k - 1] + (stixels[order[k]].u != stixels[order[k - 1]].u ? 1 : 0);
+  std::vector<size_t> parent(stixels.size());
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  for (size_t oi = 0; oi < order.size(); ++oi) {
+    for (size_t oj = oi + 1; oj < order.size() && strip[oj] - strip[oi] <= 2; ++oj) {
+      if (strip[oj] == strip[oi]) continue;
+      if (joins(stixels[order[oi]], stixels[order[oj]], cam, p)) parent[root(parent, order[oi])] = root(parent, order[oj]);
     }
+  }
+  std::vector<std::vector<const Stixel*>> groups;
+  std::vector<int> group_of(stixels.size(), -1);
+  for (size_t i : order) {  // members in u order, groups in order of their leftmost stixel
+    const size_t r = root(parent, i);
+    if (group_of[r] < 0) group_of[r] = static_cast<int>(groups.size()), groups.emplace_back();
+    groups[group_of[r]].push_back(&stixels[i]);
   }
 
   std::vector<Hypothesis> out;
@@ -66,10 +82,15 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
     const float d = disp[disp.size() / 2];
     const double z = cam.depthFromDisparity(d);
-    // Base centre: the box's middle column on the ground below the median stixel.
+    // Base centre: the box's middle column on the ground below the median
+    // stixel (its foot may be hidden behind an occluder: from the road line).
     double foot_v = 0;
     for (const Stixel* s : g)
       if (s->disparity == d) foot_v = s->bottom_row;
+    if (input.ground && input.ground->valid && input.ground->vd_slope > 0 && input.disparity) {
+      const double ground_foot = (d - input.ground->vd_intercept) / input.ground->vd_slope;
+      if (ground_foot > foot_v + 1) foot_v = std::min(ground_foot, input.disparity->rows - 1.0);
+    }
     const Point3 base = cam.toPoint(0.5 * (x0 + x1), foot_v, d);
 
     Hypothesis hy;

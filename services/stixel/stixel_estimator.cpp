@@ -2,6 +2,7 @@
 // space -> stixels -> hypotheses (NERV reference slides 3, 10).
 #include "stixel_estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "ground_geometry.hpp"
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
+#include "occluded_stixels.hpp"
 #include "stixel_extraction.hpp"
 #include "v_disparity.hpp"
 
@@ -82,6 +84,12 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
   result.stixels = extractStixels(disparity, cam, result.ground, boundary, ep);
+  if (params.occluded_stixels) {
+    const std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
+    result.stixels.insert(result.stixels.end(), behind.begin(), behind.end());
+    std::stable_sort(result.stixels.begin(), result.stixels.end(),
+                     [](const Stixel& a, const Stixel& b) { return a.u < b.u; });
+  }
 
   GroupingParams gp;
   gp.group_depth_gap_m = params.group_depth_gap_m;

@@ -24,6 +24,7 @@ struct Params {
   float max_pitch_deg = 10.0f;           // ground lines implying a steeper pitch are rejected
   float group_depth_gap_m = 1.5f;        // neighbouring stixels farther apart in depth split a box
   float group_lateral_gap_m = 0.6f;      // neighbouring stixels farther apart sideways split a box
+  bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak
   float max_disparity_px = 256.0f;       // disparities at or above are treated as invalid

@@ -26,6 +26,51 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
   return best_row;
 }
 
+float medianObstacleDisparity(const cv::Mat& disparity, const GroundModel& g, const FreeSpaceParams& fs,
+                              int u0, int u1, int v0, int v1, float lo, float hi, std::vector<float>& samples) {
+  samples.clear();
+  for (int v = v0; v <= v1; ++v) {
+    const float* row = disparity.ptr<float>(v);
+    for (int u = u0; u < u1; ++u) {
+      const float d = row[u];
+      if (!(d >= lo && d < hi)) continue;
+      const float hg = heightAboveGround(g, static_cast<float>(v), d);
+      if (hg > fs.ground_tolerance_m && hg < fs.max_height_above_ground_m) samples.push_back(d);
+    }
+  }
+  if (samples.empty()) return 0.0f;
+  auto mid = samples.begin() + samples.size() / 2;
+  std::nth_element(samples.begin(), mid, samples.end());
+  return *mid;
+}
+
+bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& g,
+                       const StixelExtractionParams& p, int u0, int u1, float d, int max_bottom_row, Stixel& st) {
+  const float a = g.vd_slope, b = g.vd_intercept, h = g.height_m;
+  const double fb = cam.fx * cam.baseline_m;
+  const int foot = std::clamp(static_cast<int>(std::lround((d - b) / a)), 0, disparity.rows - 1);
+  const int bottom = std::min(foot, max_bottom_row);
+  // Row where a point of disparity d has height max_stixel_height_m over the road.
+  const float limit_row = (d * (1.0f - p.max_stixel_height_m / h) - b) / a;
+  const int limit = std::clamp(static_cast<int>(std::ceil(limit_row)), 0, std::max(bottom, 0));
+  const double z = fb / d;
+  const float tol_px = std::max(1.0f, static_cast<float>(d * d * p.object_depth_tolerance_m / fb));
+  const int top = segmentTopRow(disparity, g, p.free_space.ground_tolerance_m, u0, u1, bottom, limit, d, tol_px);
+  if ((bottom - top + 1) * z / cam.fy < p.free_space.min_obstacle_height_m) return false;
+  st = Stixel{};
+  st.u = u0;
+  st.width = u1 - u0;
+  st.top_row = top;
+  st.bottom_row = bottom;
+  st.disparity = d;
+  st.depth_m = static_cast<float>(z);
+  const Point3 base = cam.toPoint(0.5 * (u0 + u1), foot, d);
+  st.base_x_m = static_cast<float>(base.x);
+  st.base_y_m = static_cast<float>(base.y);
+  st.base_z_m = static_cast<float>(base.z);
+  return true;
+}
+
 std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,
                                    const GroundModel& g, const std::vector<int>& boundary,
                                    const StixelExtractionParams& p) {
@@ -36,7 +81,6 @@ std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera&
   // Row where a point of disparity d has height `height_m` over the road:
   // h*(d - dg(v))/d = height_m  <=>  dg(v) = d*(1 - height_m/h).
   auto rowAtHeight = [&](float d, float height_m) { return (d * (1.0f - height_m / h) - b) / a; };
-  const double fb = cam.fx * cam.baseline_m;
 
   std::vector<float> samples;
   std::vector<Stixel> out;
@@ -51,41 +95,10 @@ std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera&
     // Robust disparity: median of the strip's obstacle pixels in the boundary window.
     const int v_from = std::clamp(static_cast<int>(std::floor(rowAtHeight(dhi, fs.max_height_above_ground_m))), 0, rows - 1);
     const int v_to = std::clamp(static_cast<int>(std::ceil(rowAtHeight(dlo, 0.0f))), 0, rows - 1);
-    samples.clear();
-    for (int v = v_from; v <= v_to; ++v) {
-      const float* row = disparity.ptr<float>(v);
-      for (int u = u0; u < u1; ++u) {
-        const float d = row[u];
-        if (!(d >= dlo && d < dhi)) continue;
-        const float hg = heightAboveGround(g, static_cast<float>(v), d);
-        if (hg > fs.ground_tolerance_m && hg < fs.max_height_above_ground_m) samples.push_back(d);
-      }
-    }
-    if (samples.empty()) continue;
-    auto mid = samples.begin() + samples.size() / 2;
-    std::nth_element(samples.begin(), mid, samples.end());
-    const float d = *mid;
-
-    const int foot = std::clamp(static_cast<int>(std::lround((d - b) / a)), 0, rows - 1);
-    const int limit = std::clamp(static_cast<int>(std::ceil(rowAtHeight(d, p.max_stixel_height_m))), 0, foot);
-    const double z = fb / d;
-    const float tol_px = std::max(1.0f, static_cast<float>(d * d * p.object_depth_tolerance_m / fb));
-    const int top = segmentTopRow(disparity, g, fs.ground_tolerance_m, u0, u1, foot, limit, d, tol_px);
-    const double height_m = (foot - top + 1) * z / cam.fy;
-    if (height_m < fs.min_obstacle_height_m) continue;
-
+    const float d = medianObstacleDisparity(disparity, g, fs, u0, u1, v_from, v_to, dlo, dhi, samples);
+    if (d <= 0.0f) continue;
     Stixel st;
-    st.u = u0;
-    st.width = u1 - u0;
-    st.top_row = top;
-    st.bottom_row = foot;
-    st.disparity = d;
-    st.depth_m = static_cast<float>(z);
-    const Point3 base = cam.toPoint(0.5 * (u0 + u1), foot, d);
-    st.base_x_m = static_cast<float>(base.x);
-    st.base_y_m = static_cast<float>(base.y);
-    st.base_z_m = static_cast<float>(base.z);
-    out.push_back(st);
+    if (stixelAtDisparity(disparity, cam, g, p, u0, u1, d, rows - 1, st)) out.push_back(st);
   }
   return out;
 }

@@ -25,6 +25,17 @@ struct StixelExtractionParams {
 // foot up (a maximum-subarray cut: a few mismatched rows do not end the obstacle,
 // a background region does). The top may rise above the sky cut of the occupancy
 // (trucks, poles are taller than it).
+// Median disparity of the obstacle pixels (between the road tolerance and the
+// sky cut) of columns [u0, u1), rows [v0, v1], disparity in [lo, hi); 0 if none.
+float medianObstacleDisparity(const cv::Mat& disparity, const GroundModel& ground, const FreeSpaceParams& fs,
+                              int u0, int u1, int v0, int v1, float lo, float hi, std::vector<float>& scratch);
+
+// The stixel of disparity d in columns [u0, u1): foot on the road line, visible
+// from min(foot, max_bottom_row) up to the top found by segmentTopRow. False
+// when its visible part is lower than the minimum obstacle height.
+bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
+                       const StixelExtractionParams& p, int u0, int u1, float d, int max_bottom_row, Stixel& out);
+
 int segmentTopRow(const cv::Mat& disparity, const GroundModel& ground, float ground_tolerance_m,
                   int u0, int u1, int foot_row, int limit_row, float d, float tolerance_px);
 

@@ -15,6 +15,7 @@ Params readParams(ConfigSection& c) {
   c.get("max_pitch_deg", p.max_pitch_deg, 0.0, 45.0);
   c.get("group_depth_gap_m", p.group_depth_gap_m, 0.0, 100.0);
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
+  c.get("occluded_stixels", p.occluded_stixels);
   c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);
   c.get("max_disparity_px", p.max_disparity_px, 1.0, 4096.0);

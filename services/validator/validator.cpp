@@ -57,6 +57,7 @@ Params readParams(ConfigSection& s) {
   s.get("keep_unvalidated", p.keep_unvalidated);
   s.get("min_height_m", p.min_height_m, 0.0, 100.0);
   s.get("max_height_m", p.max_height_m, 0.0, 100.0);
+  s.get("pole_max_width_m", p.pole_max_width_m, 0.0, 10.0);
   s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
   s.get("max_surface_tilt_deg", p.max_surface_tilt_deg, 0.0, 90.0);
   s.get("min_surface_normals", p.min_surface_normals, 1, 1000000);
@@ -78,7 +79,8 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
   // Metric size sanity (0 = unknown, not checked).
   if (h.height_m > 0 && h.height_m < p.min_height_m)
     return rejected(id, "error", 1.0f, "height " + metres(h.height_m) + " below " + metres(p.min_height_m));
-  if (h.height_m > p.max_height_m)
+  const bool pole = h.width_m > 0 && h.width_m < p.pole_max_width_m;
+  if (h.height_m > p.max_height_m && !pole)
     return rejected(id, "error", 1.0f, "height " + metres(h.height_m) + " above " + metres(p.max_height_m));
   if (h.width_m > p.max_width_m)
     return rejected(id, "error", 1.0f, "width " + metres(h.width_m) + " above " + metres(p.max_width_m));

@@ -17,7 +17,9 @@ struct Params {
   float min_error_density = 0.5f;     // "error" needs at least this normals/samples density (dense blobs)
   bool keep_unvalidated = true;       // keep hypotheses without enough normals (a planner never loses one silently)
   float min_height_m = 0.2f;          // metric height below this (when known, > 0) is implausible -> error
-  float max_height_m = 4.5f;          // metric height above this is implausible -> error
+  float max_height_m = 4.5f;          // metric height above this is implausible -> error ...
+  float pole_max_width_m = 1.2f;      // ... unless narrower than this: a pole or post (sign and tram-wire
+                                      // poles stand 5-10 m); 0 = no exception
   float max_width_m = 12.0f;          // metric width above this is implausible -> error
   // A surface only tilted from the road (lawn, verge, kerb, ramp): representative
   // normal within max_surface_tilt_deg of the ground normal while object normals

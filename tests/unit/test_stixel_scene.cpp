@@ -84,9 +84,16 @@ TEST(stixelFreeSpace, NearerObstacleWinsInItsColumns) {
   const StixelResult r = estimateStixels(renderDisparity(scene, cam), cam, Params{});
   int u0, u1;
   boxColumns(cam, front, u0, u1);
-  int checked = 0;
+  int checked = 0, behind = 0;
   for (const Stixel& s : r.stixels) {
     if (s.u >= u0 && s.u + s.width <= u1) {
+      if (s.depth_m > 20.0f) {  // the wall seen above the box: a second-layer stixel
+        EXPECT_NEAR(s.depth_m, 25.0, 0.8);
+        for (const Stixel& n : r.stixels)
+          if (n.u == s.u && n.depth_m < 20.0f) EXPECT_LT(s.bottom_row, n.top_row);
+        ++behind;
+        continue;
+      }
       EXPECT_NEAR(s.depth_m, 9.0, 0.3);
       ++checked;
     } else if (s.u + s.width < u0 - 5 || s.u > u1 + 5) {
@@ -96,6 +103,7 @@ TEST(stixelFreeSpace, NearerObstacleWinsInItsColumns) {
     }
   }
   EXPECT_GE(checked, 8);
+  EXPECT_GE(behind, 8);  // the wall continues above the box
 }
 
 TEST(stixelGrouping, SplitsTwoBoxesAtDifferentDepthsAndMergesOneWideBox) {
@@ -129,6 +137,45 @@ Stixel makeStixel(const StereoCamera& cam, int u, float depth) {
   s.bottom_row = 250;
   s.top_row = 150;
   return s;
+}
+
+TEST(stixelOccluded, PersonBehindACarGetsItsOwnHypothesis) {
+  // A 1.1 m car at 7 m hides the lower body of a 1.8 m person at 12 m; the
+  // person's upper body is seen above the car roof.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  const SceneBox car{7.0f, -1.0f, 1.0f, 1.1f}, person{12.0f, -0.1f, 0.5f, 1.8f};
+  scene.boxes = {car, person};
+  const cv::Mat disp = renderDisparity(scene, cam);
+  int pu0, pu1;
+  boxColumns(cam, person, pu0, pu1);
+  const double person_top = footRow(scene, cam, person.z_m) - person.height_m * cam.fy / person.z_m;
+
+  Params without;
+  without.occluded_stixels = false;
+  for (const Hypothesis& h : estimateStixels(disp, cam, without).hypotheses)
+    EXPECT_GT(std::abs(h.z_m - person.z_m), 1.0f) << "without second-layer stixels the person has no box";
+
+  const StixelResult r = estimateStixels(disp, cam, Params{});
+  int behind = 0;
+  for (const Stixel& s : r.stixels) {
+    if (s.u < pu0 || s.u + s.width > pu1 || std::abs(s.depth_m - person.z_m) > 0.5f) continue;
+    ++behind;
+    EXPECT_NEAR(s.top_row, person_top, 3.0);
+    EXPECT_NEAR(s.base_z_m, person.z_m, 0.5);  // the foot is hidden: the base comes from the road line
+  }
+  EXPECT_GE(behind, 3);
+  int found = 0;
+  for (const Hypothesis& h : r.hypotheses) {
+    if (std::abs(h.z_m - person.z_m) > 0.5f) continue;
+    ++found;
+    EXPECT_NEAR(h.box.x, pu0, 6);
+    EXPECT_NEAR(h.box.x + h.box.w, pu1, 6);
+    EXPECT_NEAR(h.box.y, person_top, 3.0);
+    EXPECT_NEAR(h.x_m, 0.2f, 0.3f);
+    EXPECT_NEAR(h.y_m, cam.toPoint(cam.cx, footRow(scene, cam, person.z_m), cam.fx * cam.baseline_m / person.z_m).y, 0.1);
+  }
+  EXPECT_EQ(found, 1);
 }
 
 TEST(stixelGrouping, GapsAndMinimumSize) {

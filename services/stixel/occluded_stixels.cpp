@@ -1,0 +1,62 @@
+#include "occluded_stixels.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ground_geometry.hpp"
+
+namespace nerv::stixel {
+
+std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const StereoCamera& cam,
+                                           const GroundModel& g, const std::vector<Stixel>& first,
+                                           const StixelExtractionParams& p) {
+  const FreeSpaceParams& fs = p.free_space;
+  const double fb = cam.fx * cam.baseline_m;
+  const float min_d = static_cast<float>(fb / fs.max_distance_m);
+
+  std::vector<int> hist;
+  std::vector<float> samples;
+  std::vector<Stixel> out;
+  for (const Stixel& s1 : first) {
+    const int u0 = s1.u, u1 = std::min(disparity.cols, s1.u + s1.width);
+    const int bottom = s1.top_row - 1;  // the occluder's top hides everything below
+    if (bottom < 1) continue;
+    // Clearly behind the first stixel: farther by its depth tolerance.
+    const float tol1 = std::max(1.0f, static_cast<float>(s1.disparity * s1.disparity * p.object_depth_tolerance_m / fb));
+    const float d_max = s1.disparity - tol1;
+    if (d_max <= min_d) continue;
+    hist.assign(static_cast<size_t>(std::ceil(d_max)) + 2, 0);
+    for (int v = 0; v <= bottom; ++v) {
+      const float* row = disparity.ptr<float>(v);
+      for (int u = u0; u < u1; ++u) {
+        const float d = row[u];
+        if (!(d > min_d && d < d_max)) continue;
+        const float hg = heightAboveGround(g, static_cast<float>(v), d);
+        if (hg > fs.ground_tolerance_m && hg < fs.max_height_above_ground_m) ++hist[static_cast<size_t>(d)];
+      }
+    }
+    // Mode over k +- obstacleHalfWindow(k), as the occupancy does.
+    int best_k = -1, best_n = 0;
+    for (int k = 0; k < static_cast<int>(hist.size()); ++k) {
+      const int hw = obstacleHalfWindow(k);
+      int n = 0;
+      for (int j = std::max(0, k - hw); j <= std::min(static_cast<int>(hist.size()) - 1, k + hw); ++j) n += hist[j];
+      if (n > best_n) best_n = n, best_k = k;
+    }
+    if (best_k < 0) continue;
+    const int hw = obstacleHalfWindow(best_k);
+    const float dlo = static_cast<float>(std::max(best_k - hw, 0)), dhi = static_cast<float>(best_k + hw + 1);
+    // Filled height of the mode [m] must reach the minimum obstacle height.
+    const float d_mode = best_k + 0.5f;
+    const float filled_m = static_cast<float>(best_n * fb / ((u1 - u0) * cam.fy * d_mode));
+    if (filled_m < fs.min_obstacle_height_m) continue;
+
+    const float d = medianObstacleDisparity(disparity, g, fs, u0, u1, 0, bottom, dlo, std::min(dhi, d_max), samples);
+    if (d <= 0.0f) continue;
+    Stixel st;
+    if (stixelAtDisparity(disparity, cam, g, p, u0, u1, d, bottom, st)) out.push_back(st);
+  }
+  return out;
+}
+
+}  // namespace nerv::stixel
