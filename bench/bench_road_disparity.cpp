@@ -1,0 +1,310 @@
+// Road-region disparity error of the matchers against the renderer's exact
+// disparity, and the super-SNV pose each matcher's disparity gives (issue 6:
+// why nerv_sgm degrades the normals). Not a timing benchmark: it prints error
+// statistics per matcher over rendered frames of a synthetic preset.
+//
+//   bench_road_disparity [--scene urban] [--frames 8] [--stride 2]
+//                        [--matcher nerv_sgm --matcher sgbm ...] [--p1 7 --p2 90]
+//                        [--no-subpixel] [--max-depth 30]
+//
+// Road pixels: object_id == -1 (ground), exact disparity > 0, no trap, depth
+// below --max-depth (the super-SNV ground range), rows below cy + 10.
+// Printed per matcher: density on the road, error e = d - d_true (median, mean,
+// std, p95 |e|), pixel-locking (mean e per tenth of frac(d_true); a matcher that
+// snaps to integers has e ~ -frac for frac < 0.5 and 1 - frac above), the
+// histogram of frac(d), the mean error per depth band, and the pose errors.
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "camera_pose.hpp"
+#include "integral_normals.hpp"
+#include "renderer.hpp"
+#include "scene_yaml.hpp"
+#include "snv_extrinsic.hpp"
+#include "stereo_matcher.hpp"
+#include "world_builder.hpp"
+
+namespace {
+
+struct Stats {
+  std::vector<double> err;
+  double lock_sum[10] = {}, lock_n[10] = {};
+  double frac_hist[10] = {};
+  double err_hist[21] = {};  // e in 0.1 px bins, -1.05..+1.05
+  double band_sum[6] = {}, band_n[6] = {};  // depth bands 0-5,5-10,...,25-30 m
+  long road = 0, valid = 0;
+  std::vector<double> pitch_err, roll_err, height_err;
+  std::vector<double> box_err, box_grad;
+  double radius_hist[9] = {};
+  std::vector<double> normal_pitch_err;  // per road grid pixel with a normal  // 17x17 mean error; its vertical difference over 16 rows
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * v.size())) - 1)];
+}
+
+cv::Mat testSgbm(const cv::Mat& l, const cv::Mat& r) {
+  // the disparity test_snv_synthetic_pose uses (tests/unit/snv_test_scenes.hpp)
+  auto sgbm = cv::StereoSGBM::create(0, 128, 5, 8 * 25, 32 * 25, 0, 0, 0, 0, 0,
+                                     cv::StereoSGBM::MODE_SGBM_3WAY);
+  cv::Mat raw, disp;
+  sgbm->compute(l, r, raw);
+  raw.convertTo(disp, CV_32F, 1.0 / 16.0);
+  cv::threshold(disp, disp, 0.0, 0.0, cv::THRESH_TOZERO);
+  return disp;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace nerv;
+  std::string scene = "urban";
+  int frames = 8, stride = 2;
+  double max_depth = 30.0;
+  std::vector<std::string> matchers;
+  int median = 0;  // experiment: median filter (3 or 5) on nerv_sgm's disparity
+  int blur = 0;  // experiment: box-blur (blur x blur) both views before nerv_sgm
+  std::string dump;  // directory: error images (128 + 100 e, 0 = invalid) of the first frame
+  stereo::Params base;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--scene") scene = next();
+    else if (a == "--frames") frames = std::atoi(next());
+    else if (a == "--stride") stride = std::atoi(next());
+    else if (a == "--matcher") matchers.push_back(next());
+    else if (a == "--p1") base.sgm_p1 = std::atoi(next());
+    else if (a == "--p2") base.sgm_p2 = std::atoi(next());
+    else if (a == "--no-subpixel") base.subpixel = false;
+    else if (a == "--uniqueness") base.uniqueness_ratio = std::atoi(next());
+    else if (a == "--lr") base.lr_max_diff = std::atoi(next());
+    else if (a == "--speckle") base.speckle_window_size = std::atoi(next());
+    else if (a == "--dump") dump = next();
+    else if (a == "--blur") blur = std::atoi(next());
+    else if (a == "--census") {
+      base.census_width = std::atoi(next());
+      base.census_height = std::atoi(next());
+    } else if (a == "--median") median = std::atoi(next());
+    else if (a == "--max-depth") max_depth = std::atof(next());
+    else {
+      std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  if (matchers.empty()) matchers = {"nerv_sgm", "sgbm", "gt", "gt_mask_nerv"};
+
+  const synth::SceneSpec spec =
+      synth::loadScene(synth::resolveScenePath(scene, std::string(NERV_SOURCE_DIR) + "/config/scenes"));
+  const synth::World world = synth::buildWorld(spec);
+  const StereoCamera& cam = spec.camera.intrinsics;
+  std::vector<Stats> stats(matchers.size());
+  std::vector<std::unique_ptr<stereo::StereoMatcher>> impl(matchers.size());
+  std::vector<snv::SnvExtrinsicEstimator> est(matchers.size(), snv::SnvExtrinsicEstimator{snv::Params{}});
+  for (size_t m = 0; m < matchers.size(); ++m)
+    if (matchers[m] != "sgbm_test" && matchers[m] != "gt" && matchers[m] != "gt_mask_nerv") {
+      stereo::Params p = base;
+      p.algorithm = matchers[m];
+      impl[m] = stereo::StereoMatcher::create(p);
+    }
+  std::unique_ptr<stereo::StereoMatcher> mask_matcher;
+  const double fb = cam.fx * cam.baseline_m;
+  for (int k = 0; k < frames; ++k) {
+    const int f = k * stride;
+    const synth::CameraPose pose = synth::cameraPose(spec.camera, world, f);
+    const synth::RenderedFrame rf = synth::renderFrame(world, spec.camera, pose, f, spec.seed);
+    cv::Mat l, r;
+    cv::cvtColor(rf.left, l, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(rf.right, r, cv::COLOR_BGR2GRAY);
+    for (size_t m = 0; m < matchers.size(); ++m) {
+      cv::Mat d;
+      if (impl[m]) {
+        if (blur > 1 && matchers[m] == "nerv_sgm") {
+          cv::Mat lb, rb;
+          cv::blur(l, lb, cv::Size(blur, blur));
+          cv::blur(r, rb, cv::Size(blur, blur));
+          impl[m]->compute(lb, rb, d);
+        } else {
+          impl[m]->compute(l, r, d);
+        }
+        if (median > 1 && matchers[m] == "nerv_sgm") {
+          cv::Mat dm;
+          cv::medianBlur(d, dm, median);
+          d = dm;
+        }
+      } else if (matchers[m] == "gt") {
+        d = rf.disparity.clone();
+      } else if (matchers[m] == "gt_mask_nerv") {
+        // exact disparity with nerv_sgm's invalid pixels: holes vs noise
+        if (!mask_matcher) {
+          stereo::Params p = base;
+          mask_matcher = stereo::StereoMatcher::create(p);
+        }
+        cv::Mat dn;
+        mask_matcher->compute(l, r, dn);
+        d = rf.disparity.clone();
+        d.setTo(0.0f, dn <= 0.0f);
+      } else {
+        d = testSgbm(l, r);
+      }
+      Stats& s = stats[m];
+      if (!dump.empty() && k == 0) {
+        cv::Mat img(d.size(), CV_8U, cv::Scalar(0));
+        for (int v = 0; v < d.rows; ++v)
+          for (int u = 0; u < d.cols; ++u)
+            if (d.at<float>(v, u) > 0 && rf.disparity.at<float>(v, u) > 0)
+              img.at<uchar>(v, u) = cv::saturate_cast<uchar>(128 + 100 * (d.at<float>(v, u) - rf.disparity.at<float>(v, u)));
+        cv::imwrite(dump + "/err_" + matchers[m] + ".png", img);
+        if (m == 0) cv::imwrite(dump + "/left.png", l);
+      }
+      for (int v = static_cast<int>(cam.cy) + 10; v < cam.height; ++v)
+        for (int u = 0; u < cam.width; ++u) {
+          const float gt = rf.disparity.at<float>(v, u);
+          if (gt <= 0 || rf.object_id.at<int>(v, u) != -1 || rf.trap_mask.at<uchar>(v, u)) continue;
+          const double z = fb / gt;
+          if (z > max_depth) continue;
+          ++s.road;
+          const float dv = d.at<float>(v, u);
+          if (!(dv > 0)) continue;
+          ++s.valid;
+          const double e = dv - gt;
+          s.err.push_back(e);
+          if (std::abs(e) < 1.0) {
+            const int fb_ = std::min(9, static_cast<int>((gt - std::floor(gt)) * 10));
+            s.lock_sum[fb_] += e;
+            s.lock_n[fb_] += 1;
+            s.err_hist[std::clamp(static_cast<int>(std::floor((e + 1.05) * 10)), 0, 20)] += 1;
+            s.frac_hist[std::min(9, static_cast<int>((dv - std::floor(dv)) * 10))] += 1;
+            const int band = std::min(5, static_cast<int>(z / 5));
+            s.band_sum[band] += e;
+            s.band_n[band] += 1;
+          }
+        }
+      {
+        // What the normals see: box means (17 x 17, the largest SNV window) of
+        // the error over valid road pixels, and their difference across 16 rows.
+        cv::Mat e(d.size(), CV_32F, 0.0f), w(d.size(), CV_32F, 0.0f);
+        for (int v = 0; v < cam.height; ++v)
+          for (int u = 0; u < cam.width; ++u) {
+            const float gt = rf.disparity.at<float>(v, u), dv = d.at<float>(v, u);
+            if (gt > 0 && dv > 0 && rf.object_id.at<int>(v, u) == -1 && std::abs(dv - gt) < 1.0f) {
+              e.at<float>(v, u) = dv - gt;
+              w.at<float>(v, u) = 1.0f;
+            }
+          }
+        cv::Mat se, sw;
+        cv::boxFilter(e, se, CV_32F, cv::Size(17, 17), cv::Point(-1, -1), false);
+        cv::boxFilter(w, sw, CV_32F, cv::Size(17, 17), cv::Point(-1, -1), false);
+        for (int v = static_cast<int>(cam.cy) + 18; v + 8 < cam.height; v += 4)
+          for (int u = 8; u + 8 < cam.width; u += 4) {
+            if (sw.at<float>(v - 8, u) < 150 || sw.at<float>(v + 8, u) < 150 || sw.at<float>(v, u) < 150) continue;
+            const float gt = rf.disparity.at<float>(v, u);
+            if (gt <= 0 || fb / gt > max_depth) continue;
+            s.box_err.push_back(se.at<float>(v, u) / sw.at<float>(v, u));
+            s.box_grad.push_back(se.at<float>(v + 8, u) / sw.at<float>(v + 8, u) -
+                                 se.at<float>(v - 8, u) / sw.at<float>(v - 8, u));
+          }
+      }
+      {
+        snv::IntegralNormalField field;
+        field.prepare(d, cam, snv::IntegralNormalParams{});
+        snv::NormalRow row;
+        for (int v = static_cast<int>(cam.cy) + 12; v < cam.height; v += 4) {
+          field.normalRow(v, 0, (cam.width - 1) / 4 + 1, 4, row);
+          for (int i = 0; i * 4 < cam.width; ++i) {
+            const int u = i * 4;
+            const float gt = rf.disparity.at<float>(v, u);
+            if (gt <= 0 || rf.object_id.at<int>(v, u) != -1 || fb / gt > max_depth || fb / gt < 2) continue;
+            s.radius_hist[std::clamp(row.radius[i], 0, 8)] += 1;
+            if (row.radius[i] >= 1 && std::isfinite(row.ny[i]))
+              s.normal_pitch_err.push_back(std::atan2(-row.nz[i], -row.ny[i]) * 180.0 / CV_PI - pose.pitch_deg);
+          }
+        }
+      }
+      const snv::SnvResult res = est[m].process(d, cam, {}, GroundModel{});
+      s.pitch_err.push_back(res.pose.instant_pitch_deg - pose.pitch_deg);
+      s.roll_err.push_back(res.pose.instant_roll_deg - pose.roll_deg);
+      s.height_err.push_back(res.pose.instant_height_m - pose.height_m);
+      std::printf("%-10s frame %3d true pitch %+.3f: err pitch %+.3f roll %+.3f h %+.4f (%s, %d samples)\n",
+                  matchers[m].c_str(), f, pose.pitch_deg, s.pitch_err.back(), s.roll_err.back(),
+                  s.height_err.back(), res.pose.status.c_str(), res.ground_samples);
+    }
+  }
+  std::printf("\nscene %s, %d frames (stride %d), road within %.0f m\n", scene.c_str(), frames, stride,
+              max_depth);
+  for (size_t m = 0; m < matchers.size(); ++m) {
+    Stats& s = stats[m];
+    std::vector<double> abs_err(s.err.size()), inl;
+    for (size_t i = 0; i < s.err.size(); ++i) abs_err[i] = std::abs(s.err[i]);
+    for (double e : s.err)
+      if (std::abs(e) < 1.0) inl.push_back(e);
+    double mean = 0, sq = 0;
+    for (double e : inl) mean += e;
+    mean /= std::max<size_t>(1, inl.size());
+    for (double e : inl) sq += (e - mean) * (e - mean);
+    const double sd = std::sqrt(sq / std::max<size_t>(1, inl.size()));
+    std::vector<double> ap, ar, ah;
+    for (double e : s.pitch_err) ap.push_back(std::abs(e));
+    for (double e : s.roll_err) ar.push_back(std::abs(e));
+    for (double e : s.height_err) ah.push_back(std::abs(e));
+    std::printf("%-10s road density %.1f %%, |e|>1 px %.2f %%, median e %+.3f, |e|<1: mean %+.3f std %.3f, "
+                "p95 |e| %.3f px\n",
+                matchers[m].c_str(), 100.0 * s.valid / std::max(1L, s.road),
+                100.0 * (s.err.size() - inl.size()) / std::max<size_t>(1, s.err.size()),
+                percentile(s.err, 0.5), mean, sd, percentile(abs_err, 0.95));
+    std::printf("%-10s   mean e by frac(d_true) 0.0..0.9:", matchers[m].c_str());
+    for (int b = 0; b < 10; ++b) std::printf(" %+.3f", s.lock_sum[b] / std::max(1.0, s.lock_n[b]));
+    std::printf("\n%-10s   histogram of frac(d) [%%]:      ", matchers[m].c_str());
+    double n = 0;
+    for (double h : s.frac_hist) n += h;
+    for (int b = 0; b < 10; ++b) std::printf(" %5.1f", 100.0 * s.frac_hist[b] / std::max(1.0, n));
+    std::printf("\n%-10s   histogram of e, 0.1 px bins -1..+1 [%%]:", matchers[m].c_str());
+    for (int b = 0; b < 21; ++b) std::printf(" %.1f", 100.0 * s.err_hist[b] / std::max(1.0, n));
+    std::printf("\n%-10s   mean e per 5 m depth band:      ", matchers[m].c_str());
+    for (int b = 0; b < 6; ++b) std::printf(" %+.3f", s.band_sum[b] / std::max(1.0, s.band_n[b]));
+    auto meanStd = [](const std::vector<double>& x, double& mu, double& sd) {
+      mu = 0;
+      for (double v : x) mu += v;
+      mu /= std::max<size_t>(1, x.size());
+      sd = 0;
+      for (double v : x) sd += (v - mu) * (v - mu);
+      sd = std::sqrt(sd / std::max<size_t>(1, x.size()));
+    };
+    double bm, bs, gm, gs;
+    meanStd(s.box_err, bm, bs);
+    meanStd(s.box_grad, gm, gs);
+    std::printf("\n%-10s   17x17 box mean of e: mean %+.4f std %.4f; its difference over 16 rows: mean %+.4f std %.4f px",
+                matchers[m].c_str(), bm, bs, gm, gs);
+    std::printf("\n%-10s   SNV radius on road grid pixels r=0..8 [%%]:", matchers[m].c_str());
+    double rn = 0;
+    for (double h : s.radius_hist) rn += h;
+    for (int b = 0; b < 9; ++b) std::printf(" %.1f", 100.0 * s.radius_hist[b] / std::max(1.0, rn));
+    {
+      std::vector<double> pe = s.normal_pitch_err, ape;
+      for (double x : pe) ape.push_back(std::abs(x));
+      std::printf("\n%-10s   per-normal pitch error: n %zu median %+.3f, p25 %+.3f p75 %+.3f, median |e| %.3f deg",
+                  matchers[m].c_str(), pe.size(), percentile(pe, 0.5), percentile(pe, 0.25),
+                  percentile(pe, 0.75), percentile(ape, 0.5));
+    }
+    std::printf("\n%-10s   pose |err| p95: pitch %.3f deg, roll %.3f deg, height %.4f m\n",
+                matchers[m].c_str(), percentile(ap, 0.95), percentile(ar, 0.95), percentile(ah, 0.95));
+  }
+  return 0;
+}
