@@ -61,6 +61,7 @@ Params readParams(ConfigSection& s) {
   s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
   s.get("max_surface_tilt_deg", p.max_surface_tilt_deg, 0.0, 90.0);
   s.get("min_surface_normals", p.min_surface_normals, 1, 1000000);
+  s.get("max_surface_tilt_distance_m", p.max_surface_tilt_distance_m, 0.0, 1000.0);
   if (p.min_height_m >= p.max_height_m)
     throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
   return p;
@@ -91,7 +92,8 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
     return rejected(id, "error", s.error_fraction,
                     "error-like normals " + percent(s.error_fraction) +
                         ", no horizontal component (density " + percent(s.density) + ")");
-  if (s.object_fraction < p.min_object_fraction && s.num_normals >= p.min_surface_normals &&
+  const bool near_enough = p.max_surface_tilt_distance_m <= 0 || h.distance_m <= p.max_surface_tilt_distance_m;
+  if (s.object_fraction < p.min_object_fraction && s.num_normals >= p.min_surface_normals && near_enough &&
       std::isfinite(s.tilt_from_ground_deg) && s.tilt_from_ground_deg < p.max_surface_tilt_deg) {
     char buf[128];
     std::snprintf(buf, sizeof(buf), "surface tilted %.0f deg from the road, object normals %s (< %s)",

@@ -27,6 +27,9 @@ struct Params {
   // Chosen on kitti_raw_0926_seq (docs/validator.md); 0 disables the rule.
   float max_surface_tilt_deg = 15.0f;
   int min_surface_normals = 20;
+  // ... only this near: normal angles degrade with depth noise (~z^2), and a car
+  // front at 40 m measures 10-15 deg from the road. 0 = no limit.
+  float max_surface_tilt_distance_m = 30.0f;
 };
 
 Params readParams(ConfigSection& section);
