@@ -39,6 +39,26 @@ TEST(StereoBoundarySnap, CutsFattenedPixelsBackToTheIntensityEdge) {
   EXPECT_EQ(r.d(0), 10.0f);  // background untouched
 }
 
+TEST(StereoBoundarySnap, CutsASmoothedStepDownToTheEdge) {
+  // Object at 6..9 (gray 40) whose right boundary the matcher smoothed into a
+  // ramp 20 -> 10 over columns 10..12; background flat from 13.
+  Row r({120, 121, 119, 122, 120, 121, 40, 41, 40, 42, 120, 121, 119, 122, 120, 121},
+        {10, 10, 10, 10, 10, 10, 20, 20, 20, 20, 17, 14, 12, 10, 10, 10});
+  snapDisparityBoundaries(r.gray, r.disp, r.conf, band(4));
+  for (int x : {6, 7, 8, 9}) EXPECT_EQ(r.d(x), 20.0f) << x;
+  for (int x : {10, 11, 12}) EXPECT_EQ(r.d(x), 0.0f) << x;
+  for (int x : {13, 14, 15}) EXPECT_EQ(r.d(x), 10.0f) << x;
+}
+
+TEST(StereoBoundarySnap, LeavesASlantedSurfaceAlone) {
+  // Constant slope 0.5 px per column (a wall at a grazing angle) with texture.
+  std::vector<int> g;
+  std::vector<float> d;
+  for (int x = 0; x < 24; ++x) g.push_back(x % 2 ? 60 : 140), d.push_back(20.0f - 0.5f * x);
+  Row r(g, d);
+  EXPECT_EQ(snapDisparityBoundaries(r.gray, r.disp, r.conf, band(4)), 0);
+}
+
 TEST(StereoBoundarySnap, LeavesBoundariesWithoutAnIntensityEdge) {
   Row r({120, 121, 119, 122, 120, 121, 119, 120, 121, 120, 122, 119},
         {10, 10, 10, 20, 20, 20, 20, 20, 20, 20, 10, 10});
