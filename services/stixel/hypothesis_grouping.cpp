@@ -22,6 +22,68 @@ size_t root(std::vector<size_t>& parent, size_t i) {
   return i;
 }
 
+// Visible metric height of a stixel.
+float heightOf(const Stixel& s, const StereoCamera& cam) {
+  return static_cast<float>((s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy);
+}
+
+// A post or pole standing in a hedge, on a kerb or a lawn edge joins their
+// group by depth, and the group's box (as wide as the hedge) then misses it.
+// Runs of stixels (in u order) at least tower_min_height_m tall and
+// tower_height_ratio times the group's median height, no wider than
+// tower_max_width_m, leave the group as groups of their own; the rest of
+// the group stays one group per contiguous part. Split-off towers are
+// marked so that a one-stixel post is not dropped as too small.
+void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                 const StereoCamera& cam, const GroupingParams& p) {
+  if (p.tower_min_height_m <= 0) return;
+  std::vector<std::vector<const Stixel*>> out;
+  std::vector<bool> out_tower;
+  std::vector<float> h;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    if (g.size() < 2) {
+      out.push_back(g), out_tower.push_back(tower[gi]);
+      continue;
+    }
+    h.clear();
+    for (const Stixel* s : g) h.push_back(heightOf(*s, cam));
+    std::vector<float> sorted = h;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const float median = sorted[sorted.size() / 2];
+    const float need = std::max(p.tower_min_height_m, p.tower_height_ratio * median);
+    std::vector<bool> is_tower(g.size());
+    for (size_t k = 0; k < g.size(); ++k) is_tower[k] = h[k] >= need;
+    // Runs of towers; too wide a run is the object itself, not a post in it.
+    bool any = false;
+    for (size_t k = 0; k < g.size();) {
+      size_t e = k;
+      while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
+      if (is_tower[k]) {
+        const float width_m = (g[e - 1]->u + g[e - 1]->width - g[k]->u) * g[k]->depth_m / static_cast<float>(cam.fx);
+        if (width_m > p.tower_max_width_m || (k == 0 && e == g.size()))
+          for (size_t j = k; j < e; ++j) is_tower[j] = false;
+        else
+          any = true;
+      }
+      k = e;
+    }
+    if (!any) {
+      out.push_back(g), out_tower.push_back(tower[gi]);
+      continue;
+    }
+    for (size_t k = 0; k < g.size();) {
+      size_t e = k;
+      while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
+      out.emplace_back(g.begin() + k, g.begin() + e);
+      out_tower.push_back(is_tower[k]);
+      k = e;
+    }
+  }
+  groups.swap(out);
+  tower.swap(out_tower);
+}
+
 }  // namespace
 
 std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
@@ -53,10 +115,14 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     groups[group_of[r]].push_back(&stixels[i]);
   }
 
+  std::vector<bool> tower(groups.size(), false);
+  splitTowers(groups, tower, cam, p);
+
   std::vector<Hypothesis> out;
   std::vector<float> disp;
-  for (const auto& g : groups) {
-    if (static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) {
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    if (!tower[gi] && static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) {
       // A lone tall stixel is a post or a sign, not noise.
       const Stixel& s = *g.front();
       const bool tall_single = g.size() == 1 && p.min_single_stixel_height_m > 0 &&

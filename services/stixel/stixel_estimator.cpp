@@ -95,6 +95,9 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.group_depth_gap_m = params.group_depth_gap_m;
   gp.group_lateral_gap_m = params.group_lateral_gap_m;
   gp.min_stixels_per_hypothesis = params.min_stixels_per_hypothesis;
+  gp.tower_min_height_m = params.tower_min_height_m;
+  gp.tower_height_ratio = params.tower_height_ratio;
+  gp.tower_max_width_m = params.tower_max_width_m;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;

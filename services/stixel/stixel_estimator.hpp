@@ -24,6 +24,9 @@ struct Params {
   float max_pitch_deg = 10.0f;           // ground lines implying a steeper pitch are rejected
   float group_depth_gap_m = 1.5f;        // neighbouring stixels farther apart in depth split a box
   float group_lateral_gap_m = 0.6f;      // neighbouring stixels farther apart sideways split a box
+  float tower_min_height_m = 0.8f;       // posts in hedges: stixels this tall (0 = off) ...
+  float tower_height_ratio = 2.0f;       // ... this many times their group's median height ...
+  float tower_max_width_m = 0.8f;        // ... no wider than this become hypotheses of their own
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak

@@ -90,7 +90,9 @@ TEST(stixelFreeSpace, NearerObstacleWinsInItsColumns) {
       if (s.depth_m > 20.0f) {  // the wall seen above the box: a second-layer stixel
         EXPECT_NEAR(s.depth_m, 25.0, 0.8);
         for (const Stixel& n : r.stixels)
-          if (n.u == s.u && n.depth_m < 20.0f) EXPECT_LT(s.bottom_row, n.top_row);
+          if (n.u == s.u && n.depth_m < 20.0f) {
+            EXPECT_LT(s.bottom_row, n.top_row);
+          }
         ++behind;
         continue;
       }
@@ -195,6 +197,33 @@ TEST(stixelGrouping, GapsAndMinimumSize) {
   EXPECT_EQ(hs[0].box.w, 85);
   EXPECT_EQ(hs[1].num_stixels, 3);
   EXPECT_EQ(hs[1].id, 1);
+}
+
+TEST(stixelGrouping, APostInAHedgeLeavesTheHedgesGroup) {
+  // A 0.6 m hedge at 15 m, 2 m wide, with a 1.3 m post (one strip) in it.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  p.tower_min_height_m = 0.8f;
+  std::vector<Stixel> st;
+  auto stixel = [&](int u, float height_m) {
+    Stixel s = makeStixel(cam, u, 15.0f);
+    s.top_row = s.bottom_row - static_cast<int>(height_m * cam.fy / 15.0f);
+    return s;
+  };
+  for (int u = 600; u < 700; u += 5) st.push_back(stixel(u, u == 650 ? 1.3f : 0.6f));
+  const auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 3u);  // hedge left of the post, the post, hedge right of it
+  EXPECT_EQ(hs[1].box.x, 650);
+  EXPECT_EQ(hs[1].num_stixels, 1);
+  EXPECT_NEAR(hs[1].height_m, 1.3f, 0.1f);
+  // Off: one group.
+  p.tower_min_height_m = 0.0f;
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+  // A wide tall part is the object itself (a van behind a car's bonnet), not a post.
+  p.tower_min_height_m = 0.8f;
+  for (auto& s : st)
+    if (s.u >= 640) s.top_row = s.bottom_row - static_cast<int>(1.3f * cam.fy / 15.0f);
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
 TEST(stixelReference, FastPathAgreesWithPerColumnReference) {
