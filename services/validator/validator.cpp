@@ -35,6 +35,18 @@ Verdict unvalidated(int roi_id, const Params& p, std::string reason) {
   return v;
 }
 
+// Normals were measured but decide nothing (too few, or mixed): a box lower
+// than min_unvalidated_height_m is then kerb, bush or lawn clutter far more
+// often than an obstacle, and is removed - with the reason saying so.
+Verdict undecided(const Hypothesis& h, const Params& p, std::string reason) {
+  Verdict v = unvalidated(h.id, p, std::move(reason));
+  if (h.height_m > 0 && h.height_m < p.min_unvalidated_height_m) {
+    v.kept = false;
+    v.reason += ", lower than " + metres(p.min_unvalidated_height_m);
+  }
+  return v;
+}
+
 Verdict rejected(int roi_id, const char* label, float score, std::string reason) {
   Verdict v;
   v.roi_id = roi_id;
@@ -61,6 +73,7 @@ Params readParams(ConfigSection& s) {
   s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
   s.get("max_surface_tilt_deg", p.max_surface_tilt_deg, 0.0, 90.0);
   s.get("min_surface_normals", p.min_surface_normals, 1, 1000000);
+  s.get("min_unvalidated_height_m", p.min_unvalidated_height_m, 0.0, 10.0);
   s.get("max_surface_tilt_distance_m", p.max_surface_tilt_distance_m, 0.0, 1000.0);
   if (p.min_height_m >= p.max_height_m)
     throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
@@ -74,7 +87,7 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
   if (!finiteStats(s)) return unvalidated(id, p, "invalid normal statistics");
   if (s.num_normals == 0) return unvalidated(id, p, "no normals");
   if (s.num_normals < p.min_normals)
-    return unvalidated(id, p, "only " + std::to_string(s.num_normals) + " normals (< " +
+    return undecided(h, p, "only " + std::to_string(s.num_normals) + " normals (< " +
                                   std::to_string(p.min_normals) + ")");
 
   // Metric size sanity (0 = unknown, not checked).
@@ -108,7 +121,7 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
     v.kept = true;
     return v;
   }
-  return unvalidated(id, p, "mixed normals: object " + percent(s.object_fraction) + " (< " +
+  return undecided(h, p, "mixed normals: object " + percent(s.object_fraction) + " (< " +
                                 percent(p.min_object_fraction) + "), ground " +
                                 percent(s.ground_fraction) + ", error-like " + percent(s.error_fraction));
 }

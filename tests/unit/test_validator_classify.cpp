@@ -140,6 +140,41 @@ TEST(validatorClassify, ImplausibleSizeIsError) {
   EXPECT_EQ(classify(hyp(7, 0.0f, 0.0f), &s, Params{}).label, "object");
 }
 
+TEST(validatorClassify, TallNarrowBoxIsAPoleNotAnError) {
+  const NormalStats s = stats(9, 60, 0.0f, 0.7f, 0.0f);
+  EXPECT_EQ(classify(hyp(9, 8.5f, 0.9f), &s, Params{}).label, "object");  // a tram-wire pole
+  EXPECT_EQ(classify(hyp(9, 8.5f, 3.0f), &s, Params{}).reason, "height 8.50 m above 4.50 m");
+  Params no_poles;
+  no_poles.pole_max_width_m = 0.0f;
+  EXPECT_EQ(classify(hyp(9, 8.5f, 0.9f), &s, no_poles).label, "error");
+}
+
+TEST(validatorClassify, TiltRuleOnlyNearerThanItsDistance) {
+  NormalStats front = stats(10, 60, 0.25f, 0.15f, 0.0f);  // a far car front, normals 12 deg from the road
+  front.tilt_from_ground_deg = 12.0f;
+  Hypothesis far = hyp(10);
+  far.distance_m = 40.0f;
+  EXPECT_EQ(classify(far, &front, Params{}).label, "unvalidated");
+  far.distance_m = 20.0f;
+  EXPECT_EQ(classify(far, &front, Params{}).label, "ground");
+}
+
+TEST(validatorClassify, LowUndecidedBoxesAreRemovedWithTheReason) {
+  const NormalStats mixed = stats(11, 40, 0.3f, 0.1f, 0.0f);
+  const Verdict low = classify(hyp(11, 0.4f), &mixed, Params{});
+  EXPECT_EQ(low.label, "unvalidated");
+  EXPECT_FALSE(low.kept);
+  EXPECT_NE(low.reason.find("mixed normals"), std::string::npos);
+  EXPECT_NE(low.reason.find("lower than 0.60 m"), std::string::npos) << low.reason;
+  EXPECT_TRUE(classify(hyp(11, 1.2f), &mixed, Params{}).kept);  // tall enough: kept unvalidated
+  const NormalStats few = stats(11, 3, 0.0f, 1.0f, 0.0f);
+  EXPECT_FALSE(classify(hyp(11, 0.4f), &few, Params{}).kept);
+  // Missing statistics stay an explicit, kept "unvalidated" whatever the size.
+  const Verdict missing = classify(hyp(11, 0.4f), nullptr, Params{});
+  EXPECT_TRUE(missing.kept);
+  EXPECT_EQ(missing.reason, "unvalidated: no normals");
+}
+
 TEST(validatorValidate, MatchesByIdAndHandlesUnknownAndMissing) {
   const std::vector<Hypothesis> hyps = {hyp(10), hyp(11), hyp(12)};
   const std::vector<NormalStats> st = {stats(12, 200, 0.9f, 0.0f, 0.0f),   // out of order
