@@ -14,15 +14,25 @@ float toleranceAt(float d, double fb, float tol_m) {
   return std::max(1.0f, static_cast<float>(d * d * tol_m / fb));
 }
 
-// Pixels of column u, rows [y0, y1], within [lo, hi] and above the road.
-int columnCount(const cv::Mat& disp, const GroundModel& g, float road_tol_m, int u, int y0, int y1,
-                float lo, float hi) {
-  int n = 0;
+// Pixels of column u, rows [y0, y1], within [lo, hi] and above the road:
+// their number and the longest run of consecutive ones.
+struct ColumnFill {
+  int count = 0, longest_run = 0;
+};
+ColumnFill columnFill(const cv::Mat& disp, const GroundModel& g, float road_tol_m, int u, int y0, int y1,
+                      float lo, float hi) {
+  ColumnFill f;
+  int run = 0;
   for (int v = y0; v <= y1; ++v) {
     const float x = disp.ptr<float>(v)[u];
-    if (x >= lo && x <= hi && heightAboveGround(g, static_cast<float>(v), x) > road_tol_m) ++n;
+    if (x >= lo && x <= hi && heightAboveGround(g, static_cast<float>(v), x) > road_tol_m) {
+      ++f.count;
+      f.longest_run = std::max(f.longest_run, ++run);
+    } else {
+      run = 0;
+    }
   }
-  return n;
+  return f;
 }
 
 }  // namespace
@@ -39,8 +49,14 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
     if (u < 0 || u >= cols) return false;
     const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
     const int rows = s.bottom_row - s.top_row + 1;
-    return columnCount(disparity, ground, p.ground_tolerance_m, u, s.top_row, s.bottom_row,
-                       s.disparity - tol, s.disparity + tol) >= p.min_column_fill * rows;
+    const ColumnFill f = columnFill(disparity, ground, p.ground_tolerance_m, u, s.top_row, s.bottom_row,
+                                    s.disparity - tol, s.disparity + tol);
+    const float run_px = p.min_column_run_m > 0 ? p.min_column_run_m * static_cast<float>(cam.fy) / s.depth_m : 1e9f;
+    return f.count >= p.min_column_fill * rows || f.longest_run >= run_px;
+  };
+  // How far an edge may move outside the group (the object continues outside).
+  auto reach = [&](const Stixel& s) {
+    return std::max(cw, static_cast<int>(p.max_extension_m * static_cast<float>(cam.fx) / s.depth_m));
   };
   const Stixel& left = *group.front();
   const Stixel& right = *group.back();
@@ -51,7 +67,7 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
     while (u < end && !edgeOk(left, u)) ++u;
     if (u < end) {
       if (u == left.u)
-        while (u > left.u - cw && edgeOk(left, u - 1)) --u;  // the object continues outside
+        while (u > left.u - reach(left) && edgeOk(left, u - 1)) --u;
       x0 = u;
     }
   }
@@ -60,7 +76,7 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
     while (u >= right.u && !edgeOk(right, u)) --u;
     if (u >= right.u) {
       if (u == right.u + right.width - 1)
-        while (u < right.u + right.width - 1 + cw && edgeOk(right, u + 1)) ++u;
+        while (u < right.u + right.width - 1 + reach(right) && edgeOk(right, u + 1)) ++u;
       x1 = u + 1;
     }
   }

@@ -20,7 +20,10 @@ namespace nerv::stixel {
 struct BoxRefinementParams {
   float depth_tolerance_m = 1.0f;   // a pixel belongs to a stixel within this depth [m] (>= 1 px)
   float ground_tolerance_m = 0.15f; // pixels this close to the road are road, not object [m]
-  float min_column_fill = 0.25f;    // an edge column needs this share of the stixel's rows
+  float min_column_fill = 0.25f;    // an edge column needs this share of the stixel's rows ...
+  float min_column_run_m = 0.0f;    // ... or a run of this many metres of them (a sign plate on its
+                                    // post; 0 = off) ...
+  float max_extension_m = 0.0f;     // ... and may continue this far outside the group (at least a strip)
   float min_row_fill = 0.3f;        // the top row needs this share of the box width
 };
 
@@ -30,8 +33,8 @@ struct PixelBox {
 };
 
 // group: the stixels of one hypothesis, left to right. `box` holds their union
-// on input and the refined box on output (never wider than the union plus one
-// strip on each side, never taller than the union).
+// on input and the refined box on output (never wider than the union plus
+// max(one strip, max_extension_m) on each side, never taller than the union).
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
                const BoxRefinementParams& p, PixelBox& box);

@@ -107,6 +107,8 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.refinement.ground_tolerance_m = params.ground_tolerance_m;
   gp.refinement.min_column_fill = params.refine_min_column_fill;
   gp.refinement.min_row_fill = params.refine_min_row_fill;
+  gp.refinement.min_column_run_m = params.refine_min_column_run_m;
+  gp.refinement.max_extension_m = params.refine_max_extension_m;
   result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground});
   return result;
 }

@@ -34,6 +34,8 @@ Params readParams(ConfigSection& c) {
   c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);
   c.get("refine_min_column_fill", p.refine_min_column_fill, 0.0, 1.0);
   c.get("refine_min_row_fill", p.refine_min_row_fill, 0.0, 1.0);
+  c.get("refine_min_column_run_m", p.refine_min_column_run_m, 0.0, 10.0);
+  c.get("refine_max_extension_m", p.refine_max_extension_m, 0.0, 10.0);
   if (p.min_camera_height_m >= p.max_camera_height_m)
     throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
   if (p.ground_tolerance_m >= p.min_camera_height_m)

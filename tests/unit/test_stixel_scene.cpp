@@ -226,6 +226,39 @@ TEST(stixelGrouping, APostInAHedgeLeavesTheHedgesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
+  // A 0.15 m post 3 m tall at 15 m with a 0.8 m wide, 0.6 m tall plate at its top.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  const float z = 15.0f, d = static_cast<float>(cam.fx * cam.baseline_m / z);
+  const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
+  auto paint = [&](double x_left_m, double x_right_m, double bottom_m, double top_m) {
+    const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+    const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+    const int v0 = static_cast<int>(std::lround(foot - top_m * px_per_m));
+    const int v1 = static_cast<int>(std::lround(foot - bottom_m * px_per_m));
+    disp(cv::Range(v0, v1), cv::Range(u0, u1)).setTo(d);
+    return std::make_pair(u0, u1);
+  };
+  paint(-0.075, 0.075, 0.0, 3.0);
+  const auto plate = paint(-0.4, 0.4, 2.4, 3.0);
+  const StixelResult r = estimateStixels(disp, cam, Params{});
+  int found = 0;
+  for (const Hypothesis& h : r.hypotheses) {
+    if (std::abs(h.z_m - z) > 0.5f) continue;
+    ++found;
+    EXPECT_NEAR(h.box.x, plate.first, 2);
+    EXPECT_NEAR(h.box.x + h.box.w, plate.second, 2);
+  }
+  EXPECT_EQ(found, 1);
+  Params off;
+  off.refine_min_column_run_m = 0.0f;
+  for (const Hypothesis& h : estimateStixels(disp, cam, off).hypotheses) {
+    if (std::abs(h.z_m - z) < 0.5f) EXPECT_GT(h.box.x, plate.first + 4) << "without runs the plate is not in the box";
+  }
+}
+
 TEST(stixelReference, FastPathAgreesWithPerColumnReference) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
