@@ -255,7 +255,9 @@ TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
   Params off;
   off.refine_min_column_run_m = 0.0f;
   for (const Hypothesis& h : estimateStixels(disp, cam, off).hypotheses) {
-    if (std::abs(h.z_m - z) < 0.5f) EXPECT_GT(h.box.x, plate.first + 4) << "without runs the plate is not in the box";
+    if (std::abs(h.z_m - z) < 0.5f) {
+      EXPECT_GT(h.box.x, plate.first + 4) << "without runs the plate is not in the box";
+    }
   }
 }
 
