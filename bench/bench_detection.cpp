@@ -3,7 +3,7 @@
 //
 //   build/bin/bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]
 //       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
-//       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--quiet]
+//       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]
 //
 // Per frame: SGBM disparity (the stereo_matcher's library and defaults, cached
 // as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
@@ -56,7 +56,7 @@ struct Options {
   std::vector<std::pair<std::string, std::string>> sets;
   float max_distance_m = 1e9f;
   int frames = 0;
-  bool visible = false, per_frame = false, quiet = false;
+  bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
 };
 
 [[noreturn]] void usage(const std::string& why) {
@@ -64,7 +64,7 @@ struct Options {
   std::fprintf(stderr,
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible]\n"
-               "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--quiet]\n");
+               "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n");
   std::exit(2);
 }
 
@@ -86,6 +86,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--overlay") o.overlay = value();
     else if (a == "--visible") o.visible = true;
     else if (a == "--per-frame") o.per_frame = true;
+    else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--set") {
       const std::string kv = value();
@@ -472,6 +473,11 @@ int main(int argc, char** argv) {
         tr.kept_covered += kept_tp_label[i] ? 1 : 0;
       }
 
+      if (o.dump_stixels) {
+        std::printf("frame %s stixels (u width top bottom disparity depth):\n", f.name.c_str());
+        for (const Stixel& s : st.stixels)
+          std::printf("  st %4d %2d %3d %3d %6.2f %6.2f\n", s.u, s.width, s.top_row, s.bottom_row, s.disparity, s.depth_m);
+      }
       if (o.per_frame) {
         std::printf("frame %s: %zu hyps, all TP %d FP %d FN %d | kept TP %d FP %d FN %d\n", f.name.c_str(),
                     hyps.size(), c_all.tp, c_all.fp, c_all.fn, c_kept.tp, c_kept.fp, c_kept.fn);
