@@ -73,6 +73,7 @@ Params readParams(ConfigSection& s) {
   s.get("max_width_m", p.max_width_m, 0.0, 1000.0);
   s.get("max_surface_tilt_deg", p.max_surface_tilt_deg, 0.0, 90.0);
   s.get("min_surface_normals", p.min_surface_normals, 1, 1000000);
+  s.get("min_ground_normals", p.min_ground_normals, 1, 1000000);
   s.get("min_unvalidated_height_m", p.min_unvalidated_height_m, 0.0, 10.0);
   s.get("max_surface_tilt_distance_m", p.max_surface_tilt_distance_m, 0.0, 1000.0);
   if (p.min_height_m >= p.max_height_m)
@@ -99,7 +100,7 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
   if (h.width_m > p.max_width_m)
     return rejected(id, "error", 1.0f, "width " + metres(h.width_m) + " above " + metres(p.max_width_m));
 
-  if (s.ground_fraction > p.max_ground_fraction)
+  if (s.ground_fraction > p.max_ground_fraction && s.num_normals >= p.min_ground_normals)
     return rejected(id, "ground", s.ground_fraction, "ground normals " + percent(s.ground_fraction));
   if (s.error_fraction > p.max_error_fraction && s.density >= p.min_error_density)
     return rejected(id, "error", s.error_fraction,

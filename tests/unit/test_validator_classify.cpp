@@ -175,6 +175,13 @@ TEST(validatorClassify, LowUndecidedBoxesAreRemovedWithTheReason) {
   EXPECT_EQ(missing.reason, "unvalidated: no normals");
 }
 
+TEST(validatorClassify, GroundNeedsEnoughNormals) {
+  const NormalStats thin = stats(12, 6, 1.0f, 0.0f, 0.0f);  // a far post: 6 normals, all ground-like
+  EXPECT_EQ(classify(hyp(12), &thin, Params{}).label, "unvalidated");
+  const NormalStats enough = stats(12, 8, 1.0f, 0.0f, 0.0f);
+  EXPECT_EQ(classify(hyp(12), &enough, Params{}).label, "ground");
+}
+
 TEST(validatorValidate, MatchesByIdAndHandlesUnknownAndMissing) {
   const std::vector<Hypothesis> hyps = {hyp(10), hyp(11), hyp(12)};
   const std::vector<NormalStats> st = {stats(12, 200, 0.9f, 0.0f, 0.0f),   // out of order
