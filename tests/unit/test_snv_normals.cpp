@@ -315,9 +315,62 @@ TEST(snvIntegralNormals, NormalRowAnyStartAndStep) {
           const bool has = r >= 1 && field.normalAt(u, v, r, n);
           const cv::Vec3f a(row.nx[i], row.ny[i], row.nz[i]);
           ASSERT_EQ(finiteVec(a), has) << u << "," << v;
-          if (has) ASSERT_LT(angleDeg(a, n) * CV_PI / 180.0, 1e-4) << u << "," << v;
+          if (has) {
+            ASSERT_LT(angleDeg(a, n) * CV_PI / 180.0, 1e-4) << u << "," << v;
+          }
         }
       }
+    }
+  }
+}
+
+// The vectorised row prefix sums (8 lanes and a scalar tail) and the reused
+// buffers against cv::integral of the same edge map and fixed-point values, on
+// widths that are not multiples of 8, bands of different sizes, and a field
+// reused across images of different sizes.
+TEST(snvIntegralNormals, IntegralImagesEqualCvIntegral) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat full = clutteredScene(c, 1.0f / 16);
+  IntegralNormalField reused;
+  struct Case {
+    int width, row0, row1;
+  };
+  for (const Case k : {Case{c.width, 100, 330}, Case{1237, 0, c.height}, Case{13, 40, 90},
+                       Case{c.width - 3, 200, 375}, Case{c.width, 150, 160}}) {
+    const cv::Mat d = full(cv::Rect(0, 0, k.width, c.height)).clone();
+    StereoCamera ck = c;
+    ck.width = k.width;
+    reused.prepare(d, ck, IntegralNormalParams{}, k.row0, k.row1);
+    IntegralNormalField fresh;
+    fresh.prepare(d, ck, IntegralNormalParams{}, k.row0, k.row1);
+    SCOPED_TRACE(::testing::Message() << "width " << k.width << " rows " << k.row0 << ".." << k.row1);
+    ASSERT_TRUE(reused.fixedPoint());
+    // Edge map rebuilt from the definition: invalid, or a jump to the right or below.
+    const cv::Mat band = d.rowRange(k.row0, k.row1);
+    cv::Mat edge(band.size(), CV_8U), fixed(band.size(), CV_64F);  // 256 * d, exact integers
+    for (int y = 0; y < band.rows; ++y)
+      for (int u = 0; u < band.cols; ++u) {
+        const int v = y + k.row0;
+        const float x = d.at<float>(v, u);
+        const float right = u + 1 < d.cols ? d.at<float>(v, u + 1) : x;
+        const float below = v + 1 < d.rows ? d.at<float>(v + 1, u) : x;
+        const float thr = std::max(1.0f, 0.05f * x);
+        const bool valid = x > 0.0f && x < 1e6f;
+        edge.at<uchar>(y, u) = !valid || std::abs(right - x) > thr || std::abs(below - x) > thr;
+        fixed.at<double>(y, u) = valid ? std::round(x * 256.0) : 0.0;
+      }
+    cv::Mat edge_ref, value_ref;
+    cv::integral(edge, edge_ref, CV_32S);
+    cv::integral(fixed, value_ref, CV_64F);
+    for (const IntegralNormalField* f : {&reused, &fresh}) {
+      ASSERT_EQ(f->edgeIntegral().size(), edge_ref.size());
+      EXPECT_EQ(cv::countNonZero(f->edgeIntegral() != edge_ref), 0);
+      int differ = 0;
+      for (int y = 0; y < value_ref.rows; ++y)
+        for (int u = 0; u < value_ref.cols; ++u)
+          differ += f->valueIntegral().at<uint32_t>(y, u) !=
+                    static_cast<uint32_t>(static_cast<int64_t>(value_ref.at<double>(y, u)));
+      EXPECT_EQ(differ, 0);
     }
   }
 }
