@@ -54,7 +54,14 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
   // Grid rows in parallel; each keeps its samples, concatenated in row order.
   const int grid_rows = (v1 - v0 + interval_px - 1) / interval_px;
   const int grid_cols = (disparity.cols + interval_px - 1) / interval_px;
-  std::vector<std::vector<GroundSample>> per_row(grid_rows);
+  // Per-row results in storage kept by the calling thread (capacity reused:
+  // fresh vectors page-faulted ~300 KB per frame); bound to a local reference
+  // because inside the parallel lambda the thread_local's name would mean the
+  // worker thread's own instance.
+  thread_local std::vector<std::vector<GroundSample>> kept_rows;
+  std::vector<std::vector<GroundSample>>& per_row = kept_rows;
+  if (per_row.size() < static_cast<size_t>(grid_rows)) per_row.resize(grid_rows);
+  for (int j = 0; j < grid_rows; ++j) per_row[j].clear();
   const bool use_model = usableModel(model);
   const double fb_d = cam.fx * cam.baseline_m;
   const double max_depth = params.max_depth_m, min_depth = params.min_depth_m;
@@ -91,7 +98,6 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
       if (first == grid_cols) continue;
       field.normalRow(v, first * interval_px, last - first + 1, interval_px, row);
       std::vector<GroundSample>& dst = per_row[j];
-      dst.reserve(last - first + 1);
       const float y_over_z = static_cast<float>((v - cam.cy) / cam.fy);
       for (int i = first; i <= last; ++i) {
         const int k = i - first;
@@ -104,9 +110,9 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
     }
   });
   size_t total = 0;
-  for (const auto& r : per_row) total += r.size();
+  for (int j = 0; j < grid_rows; ++j) total += per_row[j].size();
   out.reserve(total);
-  for (const auto& r : per_row) out.insert(out.end(), r.begin(), r.end());
+  for (int j = 0; j < grid_rows; ++j) out.insert(out.end(), per_row[j].begin(), per_row[j].end());
   return out;
 }
 

@@ -298,25 +298,49 @@ void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, 
     rt[i] = valid ? std::max(0, std::min(r, border / 2)) : 0;
     rad[i] = 0;
   }
-  // 2. Adaptive radius: grow r while the (4r+1)^2 window holds no edge and r
-  //    <= rt (windows are nested, so this equals the reference's shrinking).
-  for (int r = 1; r <= rmax; ++r) {
-    const int w = 2 * r;
-    const int* a = edge_integral_.ptr<int>(v - w - row0_);
-    const int* b = edge_integral_.ptr<int>(v + w + 1 - row0_);
-    // Only pixels whose windows fit in the columns can have rt >= r.
-    const int i_lo = std::max(0, (w - u0 + step - 1) / step);
-    const int room = cols - 1 - w - u0;
-    const int i_hi = room < 0 ? 0 : std::min(count, room / step + 1);
-    int grown = 0;
-    for (int i = i_lo; i < i_hi; ++i) {
-      const int u = u0 + i * step;
-      const int edges = b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w];
-      const int ok = (edges == 0) & (rad[i] == r - 1) & (rt[i] >= r);
-      rad[i] += ok;
-      grown |= ok;
+  // 2. Adaptive radius: the largest r <= rt whose (4r+1)^2 window holds no edge
+  //    (windows are nested, so this equals the reference's shrinking loop).
+  if (kUnit) {
+    // Grow r = 1, 2, ... over the whole row: contiguous loads, vectorised.
+    for (int r = 1; r <= rmax; ++r) {
+      const int w = 2 * r;
+      const int* a = edge_integral_.ptr<int>(v - w - row0_);
+      const int* b = edge_integral_.ptr<int>(v + w + 1 - row0_);
+      // Only pixels whose windows fit in the columns can have rt >= r.
+      const int i_lo = std::max(0, w - u0);
+      const int i_hi = std::min(count, std::max(0, cols - w - u0));
+      int grown = 0;
+      for (int i = i_lo; i < i_hi; ++i) {
+        const int u = u0 + i;
+        const int edges = b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w];
+        const int ok = (edges == 0) & (rad[i] == r - 1) & (rt[i] >= r);
+        rad[i] += ok;
+        grown |= ok;
+      }
+      if (!grown) break;
     }
-    if (!grown) break;
+  } else {
+    // Strided: every load is a gather, so shrink from rt per pixel instead
+    // (one window test on clear surfaces, rather than one per radius).
+    constexpr int kMaxRadius = 63;
+    CV_Assert(rmax <= kMaxRadius);
+    const int* a_row[kMaxRadius + 1];
+    const int* b_row[kMaxRadius + 1];
+    for (int r = 1; r <= rmax; ++r) {
+      a_row[r] = edge_integral_.ptr<int>(v - 2 * r - row0_);
+      b_row[r] = edge_integral_.ptr<int>(v + 2 * r + 1 - row0_);
+    }
+    for (int i = 0; i < count; ++i) {
+      const int u = u0 + i * step;
+      int r = rt[i];
+      for (; r >= 1; --r) {
+        const int w = 2 * r;
+        const int* a = a_row[r];
+        const int* b = b_row[r];
+        if (b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w] == 0) break;
+      }
+      rad[i] = r;
+    }
   }
   // 3. Normals over runs of equal radius (long on roads and walls).
   if (fixed_point_)
