@@ -112,25 +112,46 @@ void insertionSort(float* a, size_t n) {
   }
 }
 
-// Bucket ("spread") sort of a[0, n), tmp[0, n) scratch: n buckets spaced evenly
-// over [min, max]; the bucket index floor((a - min) * n / (max - min)), in
-// double, is monotone in a, so buckets are ordered and one insertion sort pass
-// over the whole array (inversions only inside buckets) finishes it. Buckets
-// of more than 32 values are bucket-sorted first, recursively. (An LSD radix
-// sort over the float bits serialised on the few top-digit buckets of such a
-// narrow range: every increment of one counter waited for the previous one.)
+// Bucket ("spread") sort of a[0, n), tmp[0, n) scratch. The bucket of a value
+// is floor(F(a)) with F a piecewise-linear approximation of the sample's CDF
+// scaled to n (from a 256-bin histogram over [min, max]): F is monotone, so the
+// buckets are ordered, and it spreads the values ~1 per bucket even when most
+// of them sit in a narrow core (evenly spaced buckets left ~20 per core bucket
+// for the insertion sort). One insertion pass over the whole array (inversions
+// only inside buckets) finishes it; buckets of more than 32 values are sorted
+// first, recursively. (An LSD radix sort over the float bits serialised on the
+// few top-digit buckets of such a narrow range.)
 void spreadSort(float* a, size_t n, float* tmp, int depth) {
   if (n <= 32) return insertionSort(a, n);
   float lo, hi;
   sampleRange(a, n, lo, hi);
   if (!(lo < hi)) return;  // all equal
   if (depth > 6 || !std::isfinite(lo) || !std::isfinite(hi)) return std::sort(a, a + n);
-  const uint32_t last = static_cast<uint32_t>(n - 1);
-  const double scale = static_cast<double>(n) / (static_cast<double>(hi) - lo);
-  const double lo_d = lo;
+  constexpr uint32_t kCoarse = 256;
+  const double scale = kCoarse / (static_cast<double>(hi) - lo), lo_d = lo;
+  std::vector<double> pos(n);
   std::vector<uint32_t> key(n), end(n, 0);
-  for (size_t i = 0; i < n; ++i)
-    key[i] = std::min(last, static_cast<uint32_t>((static_cast<double>(a[i]) - lo_d) * scale));
+  uint32_t hist[kCoarse] = {0};
+  for (size_t i = 0; i < n; ++i) {
+    pos[i] = (static_cast<double>(a[i]) - lo_d) * scale;
+    key[i] = std::min(kCoarse - 1, static_cast<uint32_t>(pos[i]));
+  }
+  for (size_t i = 0; i < n; ++i) ++hist[key[i]];
+  double cum[kCoarse];
+  double run = 0;
+  for (uint32_t b = 0; b < kCoarse; ++b) {
+    cum[b] = run;
+    run += hist[b];
+  }
+  // Within coarse bin b the position is spread linearly over [cum_b, cum_b + hist_b):
+  // the fraction is kept below 1, so floor() stays below cum_{b+1} (monotone across bins).
+  const uint32_t last = static_cast<uint32_t>(n - 1);
+  constexpr double kBelowOne = 1.0 - 1.0 / (1 << 20);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t b = key[i];
+    const double frac = std::clamp(pos[i] - b, 0.0, kBelowOne);
+    key[i] = std::min(last, static_cast<uint32_t>(cum[b] + frac * hist[b]));
+  }
   for (size_t i = 0; i < n; ++i) ++end[key[i]];
   uint32_t sum = 0;
   for (uint32_t& e : end) {  // bucket starts; the scatter below turns them into ends
