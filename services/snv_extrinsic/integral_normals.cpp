@@ -46,11 +46,30 @@ void rowPrefix(const In* in, int cols, Out* out) {
   }
 }
 
+// One row of the integer integrals, edges and (kValues) fixed-point values at
+// once: out[x+1] = above[x+1] + in[0] + ... + in[x], out[0] = above[0] (above =
+// nullptr: zeros, the first row of a chunk). Wrapping uint32: exact.
+template <bool kValues>
+void integerIntegralRowsScalar(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                               const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+  uint32_t se = 0, sq = 0;
+  out_e[0] = above_e ? above_e[0] : 0;
+  if (kValues) out_q[0] = above_q ? above_q[0] : 0;
+  for (int x = 0; x < cols; ++x) {
+    se += e[x];
+    out_e[x + 1] = se + (above_e ? above_e[x + 1] : 0);
+    if (kValues) {
+      sq += q[x];
+      out_q[x + 1] = sq + (above_q ? above_q[x + 1] : 0);
+    }
+  }
+}
+
 #if defined(__AVX2__)
-// The same running sums for 32-bit integers, 8 per step: an in-register scan
-// (shift-and-add within each 128-bit half, then the lower half's total into the
-// upper one) plus the carry of the previous step. Integer wrap-around makes it
-// bit-identical to the scalar loop, which is sequential (one add per element).
+// The same 8 columns per step: an in-register scan (shift-and-add within each
+// 128-bit half, then the lower half's total into the upper one) plus the carry
+// of the previous step; the two streams' dependency chains interleave. The
+// scalar running sum is sequential (one dependent add per element and stream).
 inline __m256i scan8(__m256i x) {
   x = _mm256_add_epi32(x, _mm256_slli_si256(x, 4));
   x = _mm256_add_epi32(x, _mm256_slli_si256(x, 8));
@@ -58,43 +77,54 @@ inline __m256i scan8(__m256i x) {
   return _mm256_add_epi32(x, _mm256_blend_epi32(_mm256_setzero_si256(), low_total, 0xF0));
 }
 
-template <typename Load>
-void rowPrefix8(int cols, uint32_t* out, Load load8) {
-  out[0] = 0;
-  __m256i carry = _mm256_setzero_si256();
+inline __m256i load8(const uint32_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+
+template <bool kValues, bool kAbove>
+void integerIntegralRowsAvx2(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                             const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+  __m256i carry_e = _mm256_setzero_si256(), carry_q = _mm256_setzero_si256();
   const __m256i last = _mm256_set1_epi32(7);
   int x = 0;
   for (; x + 8 <= cols; x += 8) {
-    const __m256i sum = _mm256_add_epi32(scan8(load8(x)), carry);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x + 1), sum);
-    carry = _mm256_permutevar8x32_epi32(sum, last);
+    const __m256i ev = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(e + x)));
+    const __m256i se = _mm256_add_epi32(scan8(ev), carry_e);
+    carry_e = _mm256_permutevar8x32_epi32(se, last);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_e + x + 1),
+                        kAbove ? _mm256_add_epi32(se, load8(above_e + x + 1)) : se);
+    if (kValues) {
+      const __m256i sq = _mm256_add_epi32(scan8(load8(q + x)), carry_q);
+      carry_q = _mm256_permutevar8x32_epi32(sq, last);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_q + x + 1),
+                          kAbove ? _mm256_add_epi32(sq, load8(above_q + x + 1)) : sq);
+    }
   }
-  uint32_t s = out[x];
-  for (; x < cols; ++x) out[x + 1] = s += static_cast<uint32_t>(load8.scalar(x));
-}
-
-struct LoadBytes {
-  const uchar* p;
-  __m256i operator()(int x) const {
-    return _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p + x)));
+  out_e[0] = kAbove ? above_e[0] : 0;
+  if (kValues) out_q[0] = kAbove ? above_q[0] : 0;
+  uint32_t se = static_cast<uint32_t>(_mm256_cvtsi256_si32(carry_e));
+  uint32_t sq = static_cast<uint32_t>(_mm256_cvtsi256_si32(carry_q));
+  for (; x < cols; ++x) {
+    se += e[x];
+    out_e[x + 1] = se + (kAbove ? above_e[x + 1] : 0);
+    if (kValues) {
+      sq += q[x];
+      out_q[x + 1] = sq + (kAbove ? above_q[x + 1] : 0);
+    }
   }
-  uint32_t scalar(int x) const { return p[x]; }
-};
-struct LoadWords {
-  const uint32_t* p;
-  __m256i operator()(int x) const { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + x)); }
-  uint32_t scalar(int x) const { return p[x]; }
-};
-
-template <>
-void rowPrefix<uchar, int>(const uchar* in, int cols, int* out) {
-  rowPrefix8(cols, reinterpret_cast<uint32_t*>(out), LoadBytes{in});
-}
-template <>
-void rowPrefix<uint32_t, uint32_t>(const uint32_t* in, int cols, uint32_t* out) {
-  rowPrefix8(cols, out, LoadWords{in});
 }
 #endif
+
+template <bool kValues>
+void integerIntegralRows(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                         const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+#if defined(__AVX2__)
+  if (above_e)
+    integerIntegralRowsAvx2<kValues, true>(cols, e, q, above_e, above_q, out_e, out_q);
+  else
+    integerIntegralRowsAvx2<kValues, false>(cols, e, q, above_e, above_q, out_e, out_q);
+#else
+  integerIntegralRowsScalar<kValues>(cols, e, q, above_e, above_q, out_e, out_q);
+#endif
+}
 
 // integral[y][x] += integral[y-1][x] over all rows, columns in parallel blocks
 // (each column is independent; rows of one block are contiguous vector adds).
@@ -168,7 +198,6 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
 
   const int rows = row1_ - row0_, cols = disparity.cols;
   const int all_rows = disparity.rows + 1;
-  edge_ = bufferView(edge_buffer_, rows, cols, CV_8U, all_rows);
   edge_integral_ = bufferView(edge_integral_buffer_, rows + 1, cols + 1, CV_32S, all_rows);
   edge_integral_.row(0).setTo(0);
   // Fixed point is tried first (one pass); an inexact value falls back to CV_64F.
@@ -194,13 +223,14 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
     const float fb = fb_;
     std::vector<float> value(cols);
     std::vector<uint32_t> fixed_value(cols);
+    std::vector<uchar> edge(cols);  // the edge map lives only in its integral
     for (int chunk = range.start; chunk < range.end; ++chunk)
       for (int y = chunkBegin(rows, chunks, chunk), y_end = chunkBegin(rows, chunks, chunk + 1); y < y_end; ++y) {
         const bool accumulate = y > chunkBegin(rows, chunks, chunk);
         const int v = y + row0_;
         const float* d = disparity.ptr<float>(v);
         const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
-        uchar* e = edge_.ptr<uchar>(y);
+        uchar* e = edge.data();
         float* val = value.data();
         // Branch-free so it vectorises. A jump to the right or below marks this
         // pixel: any window spanning the jump contains it.
@@ -217,8 +247,7 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
         for (int u = 0; u + 1 < cols; ++u) pixel(u, d[u + 1]);
         if (cols > 0) pixel(cols - 1, d[cols - 1]);
         uint32_t* edge_row = edge_integral_.ptr<uint32_t>(y + 1);
-        rowPrefix(e, cols, edge_integral_.ptr<int>(y + 1));
-        if (accumulate) addRow(edge_integral_.ptr<uint32_t>(y), edge_row, cols + 1);
+        const uint32_t* edge_above = accumulate ? edge_integral_.ptr<uint32_t>(y) : nullptr;
         if (fixed) {
           int bad = 0;
           uint32_t* q = fixed_value.data();
@@ -228,13 +257,12 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
             bad |= rounded != scaled;
             q[u] = static_cast<uint32_t>(static_cast<int32_t>(rounded));
           }
-          if (bad) inexact = true;
-          if (!inexact) {
-            uint32_t* value_row = value_integral_.ptr<uint32_t>(y + 1);
-            rowPrefix(q, cols, value_row);
-            if (accumulate) addRow(value_integral_.ptr<uint32_t>(y), value_row, cols + 1);
-          }
+          if (bad) inexact = true;  // the value rows are redone in CV_64F below
+          integerIntegralRows<true>(cols, e, q, edge_above,
+                                    accumulate ? value_integral_.ptr<uint32_t>(y) : nullptr, edge_row,
+                                    value_integral_.ptr<uint32_t>(y + 1));
         } else {
+          integerIntegralRows<false>(cols, e, nullptr, edge_above, nullptr, edge_row, nullptr);
           rowPrefix(val, cols, value_integral_.ptr<double>(y + 1));
         }
       }
@@ -472,7 +500,12 @@ bool IntegralNormalField::normalAt(int u, int v, int r, cv::Vec3f& n) const {
 }
 
 cv::Mat IntegralNormalField::edgeDistance() const {
-  cv::Mat inside = edge_ == 0;  // 255 off edges
+  // The edge map, recovered from its integral (1 x 1 boxes).
+  const int rows = edge_integral_.rows - 1, cols = edge_integral_.cols - 1;
+  cv::Mat inside(rows, cols, CV_8U);  // 255 off edges
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x)
+      inside.at<uchar>(y, x) = edgeCount(x, y + row0_, 0) == 0 ? 255 : 0;
   cv::Mat dist;
   cv::distanceTransform(inside, dist, cv::DIST_C, 3, CV_32F);
   return dist;

@@ -112,9 +112,8 @@ class IntegralNormalField {
 
   cv::Mat disparity_;      // the caller's map (header only)
   cv::Mat value_integral_; // CV_32S (uint32, 256 * value) or CV_64F integral, invalid = 0, band rows
-  cv::Mat edge_;           // CV_8U, 1 = edge/invalid, band rows
-  cv::Mat edge_integral_;  // CV_32S integral of edge_
-  cv::Mat edge_buffer_, edge_integral_buffer_, fixed_buffer_, double_buffer_;  // whole-image storage of the above
+  cv::Mat edge_integral_;  // CV_32S integral of the edge map (1 = edge/invalid), band rows
+  cv::Mat edge_integral_buffer_, fixed_buffer_, double_buffer_;  // whole-image storage of the above
   bool fixed_point_ = false;
   StereoCamera cam_;
   IntegralNormalParams params_;
