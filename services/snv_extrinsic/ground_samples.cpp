@@ -65,12 +65,16 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
   const bool use_model = usableModel(model);
   const double fb_d = cam.fx * cam.baseline_m;
   const double max_depth = params.max_depth_m, min_depth = params.min_depth_m;
+  // x / z of every grid column (the same on every row).
+  std::vector<float> x_over_z(grid_cols);
+  for (int i = 0; i < grid_cols; ++i) x_over_z[i] = static_cast<float>((i * interval_px - cam.cx) / cam.fx);
   cv::parallel_for_(cv::Range(0, grid_rows), [&](const cv::Range& range) {
     NormalRow row;
     std::vector<uchar> candidate(grid_cols);
+    std::vector<float> grid_d(grid_cols);  // the row's grid disparities, contiguous
     for (int j = range.start; j < range.end; ++j) {
       const int v = v0 + j * interval_px;
-      const float* d = disparity.ptr<float>(v);
+      const float* d_row = disparity.ptr<float>(v);
       // isGroundCandidate for the whole grid row: the row's terms first, then a
       // branch-free (vectorised) test per pixel with the same arithmetic.
       float dg = 0, tol = 0;
@@ -83,9 +87,11 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
         row_ok = v > cam.cy + params.lower_margin_px;
       }
       if (!row_ok) continue;
+      float* d = grid_d.data();
+      for (int i = 0; i < grid_cols; ++i) d[i] = d_row[i * interval_px];
       uchar* cand = candidate.data();
       for (int i = 0; i < grid_cols; ++i) {
-        const float x = d[i * interval_px];
+        const float x = d[i];
         const bool valid = (x > 0.0f) & (x < 1e6f);  // validDisparity
         const double z = fb_d / (valid ? x : 1.0f);
         const bool in_range = !(z > max_depth) & !(z < min_depth);
@@ -102,10 +108,9 @@ std::vector<GroundSample> selectGroundSamples(const IntegralNormalField& field,
       for (int i = first; i <= last; ++i) {
         const int k = i - first;
         if (!cand[i] || row.radius[k] < 1 || !(-row.ny[k] >= min_up)) continue;
-        const int u = i * interval_px;
-        const float z = fb / d[u];
-        dst.push_back({u, v, cv::Vec3f(row.nx[k], row.ny[k], row.nz[k]),
-                       cv::Vec3f(static_cast<float>((u - cam.cx) / cam.fx) * z, y_over_z * z, z), d[u]});
+        const float z = fb / d[i];
+        dst.push_back({i * interval_px, v, cv::Vec3f(row.nx[k], row.ny[k], row.nz[k]),
+                       cv::Vec3f(x_over_z[i] * z, y_over_z * z, z), d[i]});
       }
     }
   });
