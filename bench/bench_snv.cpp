@@ -333,7 +333,7 @@ int main(int argc, char** argv) {
               "ratios = previous / fast, naive / fast.\nlocal = band integral field + ground samples + ROI normals; "
               "naive = the unsmoothed full naive map; box-naive = the same sample pixels with r = 3 box "
               "means summed pixel by pixel (1 repeat), ratio = box-naive / local; nrm = normals per frame.\n"
-              "super = pitch+roll (polynomial atan), radix sort, mode from the sorted run, adaptive mean shift, "
+              "super = pitch+roll (polynomial atan), bucket sort (sortAngles), mode from the sorted run, mean, adaptive mean shift, "
               "entropy, median height; previous = std::atan2, histogram, std::sort, same rest; "
               "nrm = ground normals per frame.\n"
               "plane fit = road plane for roll (IRLS), second height, residual entropy: part of process() "
