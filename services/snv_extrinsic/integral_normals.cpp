@@ -2,6 +2,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -42,6 +46,86 @@ void rowPrefix(const In* in, int cols, Out* out) {
   }
 }
 
+// One row of the integer integrals, edges and (kValues) fixed-point values at
+// once: out[x+1] = above[x+1] + in[0] + ... + in[x], out[0] = above[0] (above =
+// nullptr: zeros, the first row of a chunk). Wrapping uint32: exact.
+template <bool kValues>
+void integerIntegralRowsScalar(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                               const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+  uint32_t se = 0, sq = 0;
+  out_e[0] = above_e ? above_e[0] : 0;
+  if (kValues) out_q[0] = above_q ? above_q[0] : 0;
+  for (int x = 0; x < cols; ++x) {
+    se += e[x];
+    out_e[x + 1] = se + (above_e ? above_e[x + 1] : 0);
+    if (kValues) {
+      sq += q[x];
+      out_q[x + 1] = sq + (above_q ? above_q[x + 1] : 0);
+    }
+  }
+}
+
+#if defined(__AVX2__)
+// The same 8 columns per step: an in-register scan (shift-and-add within each
+// 128-bit half, then the lower half's total into the upper one) plus the carry
+// of the previous step; the two streams' dependency chains interleave. The
+// scalar running sum is sequential (one dependent add per element and stream).
+inline __m256i scan8(__m256i x) {
+  x = _mm256_add_epi32(x, _mm256_slli_si256(x, 4));
+  x = _mm256_add_epi32(x, _mm256_slli_si256(x, 8));
+  const __m256i low_total = _mm256_permutevar8x32_epi32(x, _mm256_set1_epi32(3));
+  return _mm256_add_epi32(x, _mm256_blend_epi32(_mm256_setzero_si256(), low_total, 0xF0));
+}
+
+inline __m256i load8(const uint32_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+
+template <bool kValues, bool kAbove>
+void integerIntegralRowsAvx2(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                             const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+  __m256i carry_e = _mm256_setzero_si256(), carry_q = _mm256_setzero_si256();
+  const __m256i last = _mm256_set1_epi32(7);
+  int x = 0;
+  for (; x + 8 <= cols; x += 8) {
+    const __m256i ev = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(e + x)));
+    const __m256i se = _mm256_add_epi32(scan8(ev), carry_e);
+    carry_e = _mm256_permutevar8x32_epi32(se, last);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_e + x + 1),
+                        kAbove ? _mm256_add_epi32(se, load8(above_e + x + 1)) : se);
+    if (kValues) {
+      const __m256i sq = _mm256_add_epi32(scan8(load8(q + x)), carry_q);
+      carry_q = _mm256_permutevar8x32_epi32(sq, last);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_q + x + 1),
+                          kAbove ? _mm256_add_epi32(sq, load8(above_q + x + 1)) : sq);
+    }
+  }
+  out_e[0] = kAbove ? above_e[0] : 0;
+  if (kValues) out_q[0] = kAbove ? above_q[0] : 0;
+  uint32_t se = static_cast<uint32_t>(_mm256_cvtsi256_si32(carry_e));
+  uint32_t sq = static_cast<uint32_t>(_mm256_cvtsi256_si32(carry_q));
+  for (; x < cols; ++x) {
+    se += e[x];
+    out_e[x + 1] = se + (kAbove ? above_e[x + 1] : 0);
+    if (kValues) {
+      sq += q[x];
+      out_q[x + 1] = sq + (kAbove ? above_q[x + 1] : 0);
+    }
+  }
+}
+#endif
+
+template <bool kValues>
+void integerIntegralRows(int cols, const uchar* e, const uint32_t* q, const uint32_t* above_e,
+                         const uint32_t* above_q, uint32_t* out_e, uint32_t* out_q) {
+#if defined(__AVX2__)
+  if (above_e)
+    integerIntegralRowsAvx2<kValues, true>(cols, e, q, above_e, above_q, out_e, out_q);
+  else
+    integerIntegralRowsAvx2<kValues, false>(cols, e, q, above_e, above_q, out_e, out_q);
+#else
+  integerIntegralRowsScalar<kValues>(cols, e, q, above_e, above_q, out_e, out_q);
+#endif
+}
+
 // integral[y][x] += integral[y-1][x] over all rows, columns in parallel blocks
 // (each column is independent; rows of one block are contiguous vector adds).
 template <typename T>
@@ -55,6 +139,39 @@ void accumulateColumns(cv::Mat& integral) {
       for (int x = x0; x < x1; ++x) cur[x] += prev[x];
     }
   });
+}
+
+// First band row of chunk c when `rows` rows are cut into `chunks` chunks.
+inline int chunkBegin(int rows, int chunks, int c) { return static_cast<int>(int64_t(rows) * c / chunks); }
+
+// to[x] += from[x] (wrapping; vectorised).
+inline void addRow(const uint32_t* from, uint32_t* to, int n) {
+  for (int x = 0; x < n; ++x) to[x] += from[x];
+}
+
+// Integral rows accumulated within chunks (see prepare()): add to every row of
+// chunk c the final last row of chunk c - 1, chunk after chunk, columns in
+// parallel blocks.
+void addChunkOffsets(cv::Mat& integral, int rows, int chunks) {
+  const int cols = integral.cols, block = 512;
+  for (int c = 1; c < chunks; ++c) {
+    const int y_end = chunkBegin(rows, chunks, c + 1);
+    const uint32_t* offset = integral.ptr<uint32_t>(chunkBegin(rows, chunks, c));  // integral row = last row of c - 1
+    cv::parallel_for_(cv::Range(0, (cols + block - 1) / block), [&](const cv::Range& range) {
+      const int x0 = range.start * block, x1 = std::min(cols, range.end * block);
+      for (int y = chunkBegin(rows, chunks, c) + 1; y <= y_end; ++y) addRow(offset + x0, integral.ptr<uint32_t>(y) + x0, x1 - x0);
+    });
+  }
+}
+
+// A rows x cols view of `buffer`, which grows once to the whole image: a field
+// kept across frames then allocates - and page-faults - its ~3 MB once instead
+// of every frame (0.3-0.9 ms of page faults per frame measured when freed
+// memory went back to the system between frames).
+cv::Mat bufferView(cv::Mat& buffer, int rows, int cols, int type, int max_rows) {
+  if (buffer.type() != type || buffer.cols != cols || buffer.rows < rows)
+    buffer.create(std::max(rows, max_rows), cols, type);
+  return buffer.rowRange(0, rows);
 }
 
 // Box sum from four integral rows/columns, as float.
@@ -80,17 +197,24 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
   inv_fy_ = static_cast<float>(1.0 / cam.fy);
 
   const int rows = row1_ - row0_, cols = disparity.cols;
-  edge_.create(rows, cols, CV_8U);
-  edge_integral_.create(rows + 1, cols + 1, CV_32S);
+  const int all_rows = disparity.rows + 1;
+  edge_integral_ = bufferView(edge_integral_buffer_, rows + 1, cols + 1, CV_32S, all_rows);
   edge_integral_.row(0).setTo(0);
   // Fixed point is tried first (one pass); an inexact value falls back to CV_64F.
   bool fixed = params.smooth_disparity;
-  value_integral_.create(rows + 1, cols + 1, fixed ? CV_32S : CV_64F);
+  value_integral_ = fixed ? bufferView(fixed_buffer_, rows + 1, cols + 1, CV_32S, all_rows)
+                          : bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, all_rows);
   value_integral_.row(0).setTo(0);
   std::atomic<bool> inexact{false};
 
-  // Edge map, values and their row prefix sums, rows in parallel.
-  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+  // Edge map, values and their row prefix sums in chunks of consecutive rows,
+  // one per thread. Integer integrals are accumulated down the chunk while the
+  // previous row is still in cache (a separate column pass re-read and re-wrote
+  // ~2 MB per frame); each chunk's offset, the last row of the one above, is
+  // added afterwards (wrapping integers: exact, same sums). The CV_64F integral
+  // keeps the separate column pass (cv::integral's summation order).
+  const int chunks = std::clamp(cv::getNumThreads(), 1, std::max(1, rows / 16));
+  cv::parallel_for_(cv::Range(0, chunks), [&](const cv::Range& range) {
     // Locals, not captures: a uchar store could alias a captured value and
     // keep the loops below from vectorising.
     const int cols = disparity.cols;
@@ -99,47 +223,54 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
     const float fb = fb_;
     std::vector<float> value(cols);
     std::vector<uint32_t> fixed_value(cols);
-    for (int y = range.start; y < range.end; ++y) {
-      const int v = y + row0_;
-      const float* d = disparity.ptr<float>(v);
-      const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
-      uchar* e = edge_.ptr<uchar>(y);
-      float* val = value.data();
-      // Branch-free so it vectorises. A jump to the right or below marks this
-      // pixel: any window spanning the jump contains it.
-      auto pixel = [&](int u, float right) {
-        const float c = d[u];
-        const bool valid = (c > 0.0f) & (c < 1e6f);  // validDisparity
-        const float safe = valid ? c : 1.0f;
-        const float depth = fb / safe;
-        const float thr = std::max(jump_px, jump_rel * c);
-        const bool jump = (std::abs(right - c) > thr) | (std::abs(below[u] - c) > thr);
-        e[u] = static_cast<uchar>(!valid | jump);
-        val[u] = valid ? (smooth ? c : depth) : 0.0f;
-      };
-      for (int u = 0; u + 1 < cols; ++u) pixel(u, d[u + 1]);
-      if (cols > 0) pixel(cols - 1, d[cols - 1]);
-      rowPrefix(e, cols, edge_integral_.ptr<int>(y + 1));
-      if (fixed) {
-        int bad = 0;
-        uint32_t* q = fixed_value.data();
-        for (int u = 0; u < cols; ++u) {
-          const float scaled = val[u] * kFixedScale;
-          const float rounded = std::nearbyint(scaled);
-          bad |= rounded != scaled;
-          q[u] = static_cast<uint32_t>(static_cast<int32_t>(rounded));
+    std::vector<uchar> edge(cols);  // the edge map lives only in its integral
+    for (int chunk = range.start; chunk < range.end; ++chunk)
+      for (int y = chunkBegin(rows, chunks, chunk), y_end = chunkBegin(rows, chunks, chunk + 1); y < y_end; ++y) {
+        const bool accumulate = y > chunkBegin(rows, chunks, chunk);
+        const int v = y + row0_;
+        const float* d = disparity.ptr<float>(v);
+        const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
+        uchar* e = edge.data();
+        float* val = value.data();
+        // Branch-free so it vectorises. A jump to the right or below marks this
+        // pixel: any window spanning the jump contains it.
+        auto pixel = [&](int u, float right) {
+          const float c = d[u];
+          const bool valid = (c > 0.0f) & (c < 1e6f);  // validDisparity
+          const float safe = valid ? c : 1.0f;
+          const float depth = fb / safe;
+          const float thr = std::max(jump_px, jump_rel * c);
+          const bool jump = (std::abs(right - c) > thr) | (std::abs(below[u] - c) > thr);
+          e[u] = static_cast<uchar>(!valid | jump);
+          val[u] = valid ? (smooth ? c : depth) : 0.0f;
+        };
+        for (int u = 0; u + 1 < cols; ++u) pixel(u, d[u + 1]);
+        if (cols > 0) pixel(cols - 1, d[cols - 1]);
+        uint32_t* edge_row = edge_integral_.ptr<uint32_t>(y + 1);
+        const uint32_t* edge_above = accumulate ? edge_integral_.ptr<uint32_t>(y) : nullptr;
+        if (fixed) {
+          int bad = 0;
+          uint32_t* q = fixed_value.data();
+          for (int u = 0; u < cols; ++u) {
+            const float scaled = val[u] * kFixedScale;
+            const float rounded = std::nearbyint(scaled);
+            bad |= rounded != scaled;
+            q[u] = static_cast<uint32_t>(static_cast<int32_t>(rounded));
+          }
+          if (bad) inexact = true;  // the value rows are redone in CV_64F below
+          integerIntegralRows<true>(cols, e, q, edge_above,
+                                    accumulate ? value_integral_.ptr<uint32_t>(y) : nullptr, edge_row,
+                                    value_integral_.ptr<uint32_t>(y + 1));
+        } else {
+          integerIntegralRows<false>(cols, e, nullptr, edge_above, nullptr, edge_row, nullptr);
+          rowPrefix(val, cols, value_integral_.ptr<double>(y + 1));
         }
-        if (bad) inexact = true;
-        if (!inexact) rowPrefix(q, cols, value_integral_.ptr<uint32_t>(y + 1));
-      } else {
-        rowPrefix(val, cols, value_integral_.ptr<double>(y + 1));
       }
-    }
   });
   if (fixed && inexact) {
     // Not a multiple of 1/256 somewhere: exact sums need the CV_64F integral.
     fixed = false;
-    value_integral_.create(rows + 1, cols + 1, CV_64F);
+    value_integral_ = bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, all_rows);
     value_integral_.row(0).setTo(0);
     cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
       std::vector<float> value(cols);
@@ -151,9 +282,9 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
     });
   }
   fixed_point_ = fixed;
-  accumulateColumns<int>(edge_integral_);
+  addChunkOffsets(edge_integral_, rows, chunks);
   if (fixed_point_)
-    accumulateColumns<uint32_t>(value_integral_);
+    addChunkOffsets(value_integral_, rows, chunks);
   else
     accumulateColumns<double>(value_integral_);
 }
@@ -195,25 +326,49 @@ void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, 
     rt[i] = valid ? std::max(0, std::min(r, border / 2)) : 0;
     rad[i] = 0;
   }
-  // 2. Adaptive radius: grow r while the (4r+1)^2 window holds no edge and r
-  //    <= rt (windows are nested, so this equals the reference's shrinking).
-  for (int r = 1; r <= rmax; ++r) {
-    const int w = 2 * r;
-    const int* a = edge_integral_.ptr<int>(v - w - row0_);
-    const int* b = edge_integral_.ptr<int>(v + w + 1 - row0_);
-    // Only pixels whose windows fit in the columns can have rt >= r.
-    const int i_lo = std::max(0, (w - u0 + step - 1) / step);
-    const int room = cols - 1 - w - u0;
-    const int i_hi = room < 0 ? 0 : std::min(count, room / step + 1);
-    int grown = 0;
-    for (int i = i_lo; i < i_hi; ++i) {
-      const int u = u0 + i * step;
-      const int edges = b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w];
-      const int ok = (edges == 0) & (rad[i] == r - 1) & (rt[i] >= r);
-      rad[i] += ok;
-      grown |= ok;
+  // 2. Adaptive radius: the largest r <= rt whose (4r+1)^2 window holds no edge
+  //    (windows are nested, so this equals the reference's shrinking loop).
+  if (kUnit) {
+    // Grow r = 1, 2, ... over the whole row: contiguous loads, vectorised.
+    for (int r = 1; r <= rmax; ++r) {
+      const int w = 2 * r;
+      const int* a = edge_integral_.ptr<int>(v - w - row0_);
+      const int* b = edge_integral_.ptr<int>(v + w + 1 - row0_);
+      // Only pixels whose windows fit in the columns can have rt >= r.
+      const int i_lo = std::max(0, w - u0);
+      const int i_hi = std::min(count, std::max(0, cols - w - u0));
+      int grown = 0;
+      for (int i = i_lo; i < i_hi; ++i) {
+        const int u = u0 + i;
+        const int edges = b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w];
+        const int ok = (edges == 0) & (rad[i] == r - 1) & (rt[i] >= r);
+        rad[i] += ok;
+        grown |= ok;
+      }
+      if (!grown) break;
     }
-    if (!grown) break;
+  } else {
+    // Strided: every load is a gather, so shrink from rt per pixel instead
+    // (one window test on clear surfaces, rather than one per radius).
+    constexpr int kMaxRadius = 63;
+    CV_Assert(rmax <= kMaxRadius);
+    const int* a_row[kMaxRadius + 1];
+    const int* b_row[kMaxRadius + 1];
+    for (int r = 1; r <= rmax; ++r) {
+      a_row[r] = edge_integral_.ptr<int>(v - 2 * r - row0_);
+      b_row[r] = edge_integral_.ptr<int>(v + 2 * r + 1 - row0_);
+    }
+    for (int i = 0; i < count; ++i) {
+      const int u = u0 + i * step;
+      int r = rt[i];
+      for (; r >= 1; --r) {
+        const int w = 2 * r;
+        const int* a = a_row[r];
+        const int* b = b_row[r];
+        if (b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w] == 0) break;
+      }
+      rad[i] = r;
+    }
   }
   // 3. Normals over runs of equal radius (long on roads and walls).
   if (fixed_point_)
@@ -345,7 +500,12 @@ bool IntegralNormalField::normalAt(int u, int v, int r, cv::Vec3f& n) const {
 }
 
 cv::Mat IntegralNormalField::edgeDistance() const {
-  cv::Mat inside = edge_ == 0;  // 255 off edges
+  // The edge map, recovered from its integral (1 x 1 boxes).
+  const int rows = edge_integral_.rows - 1, cols = edge_integral_.cols - 1;
+  cv::Mat inside(rows, cols, CV_8U);  // 255 off edges
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x)
+      inside.at<uchar>(y, x) = edgeCount(x, y + row0_, 0) == 0 ? 255 : 0;
   cv::Mat dist;
   cv::distanceTransform(inside, dist, cv::DIST_C, 3, CV_32F);
   return dist;
@@ -361,7 +521,11 @@ NormalMap computeNormalMap(const cv::Mat& disparity, const StereoCamera& cam,
   map.normals.create(gh, gw, CV_32FC3);
   if (disparity.empty()) return map;
 
-  IntegralNormalField field;
+  // One field per calling thread, kept: its buffers are reused by the next map.
+  // (Bound to a local reference: inside the parallel lambda the name of a
+  // thread_local would mean the worker thread's own, empty, instance.)
+  thread_local IntegralNormalField kept;
+  IntegralNormalField& field = kept;
   field.prepare(disparity, cam, params);
   // r = min(B, T) read from the edge integral rather than a cv::distanceTransform:
   // the same radius (see edgeDistance() and its test) without a full-frame transform.

@@ -58,8 +58,16 @@ struct NormalRow {
 // CV_64F. Both give bit-identical box sums on quantised input.
 class IntegralNormalField {
  public:
+  IntegralNormalField() = default;
+  // Not copyable: the integral images live in buffers that prepare() reuses.
+  IntegralNormalField(const IntegralNormalField&) = delete;
+  IntegralNormalField& operator=(const IntegralNormalField&) = delete;
+  IntegralNormalField(IntegralNormalField&&) = default;
+  IntegralNormalField& operator=(IntegralNormalField&&) = default;
+
   // Prepares rows [row_begin, row_end) (clamped to the image). disparity: CV_32F, <= 0 invalid.
-  // Rows are prepared in parallel (cv::parallel_for_).
+  // Rows are prepared in parallel (cv::parallel_for_). The buffers are kept and
+  // reused by the next prepare(): keep one field across frames.
   void prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
                int row_begin = 0, int row_end = INT_MAX);
 
@@ -88,6 +96,10 @@ class IntegralNormalField {
   bool normalAt(int u, int v, int r, cv::Vec3f& n) const;
   // Chessboard distance of every pixel in the band to the nearest edge (CV_32F, band rows).
   cv::Mat edgeDistance() const;
+  // The band's integral images, (rows + 1) x (cols + 1) (tests): edges (CV_32S) and
+  // values (CV_32S holding wrapping uint32 of 256 * value when fixedPoint(), else CV_64F).
+  const cv::Mat& edgeIntegral() const { return edge_integral_; }
+  const cv::Mat& valueIntegral() const { return value_integral_; }
 
  private:
   double boxSum(int u, int v, int r) const;  // value box sum (unscaled)
@@ -100,8 +112,8 @@ class IntegralNormalField {
 
   cv::Mat disparity_;      // the caller's map (header only)
   cv::Mat value_integral_; // CV_32S (uint32, 256 * value) or CV_64F integral, invalid = 0, band rows
-  cv::Mat edge_;           // CV_8U, 1 = edge/invalid, band rows
-  cv::Mat edge_integral_;  // CV_32S integral of edge_
+  cv::Mat edge_integral_;  // CV_32S integral of the edge map (1 = edge/invalid), band rows
+  cv::Mat edge_integral_buffer_, fixed_buffer_, double_buffer_;  // whole-image storage of the above
   bool fixed_point_ = false;
   StereoCamera cam_;
   IntegralNormalParams params_;

@@ -154,8 +154,8 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
   if (!ground_rows.empty())
     needed.push_back(cv::Rect(0, ground_rows.start, disparity.cols, ground_rows.size()));
   const cv::Range band = rowBandFor(needed, disparity.rows, params_.max_radius_px);
-  IntegralNormalField field;
-  if (!band.empty()) field.prepare(disparity, cam, normalParams(params_), band.start, band.end);
+  IntegralNormalField& field = field_;  // a fresh field page-faulted its ~3 MB every frame
+  field.prepare(disparity, cam, normalParams(params_), band.start, band.end);
 
   // Super-SNV pose from the ground normals.
   filter_.predict();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "integral_normals.hpp"
 #include "perception_types.hpp"
 #include "pose_filter.hpp"
 #include "stereo_camera.hpp"
@@ -83,6 +84,7 @@ class SnvExtrinsicEstimator {
  private:
   Params params_;
   PoseFilter filter_;
+  IntegralNormalField field_;  // kept across frames so its integral buffers are reused
 };
 
 }  // namespace nerv::snv

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 namespace nerv::snv {
@@ -55,12 +54,6 @@ inline float atanPoly(float x) {
   return x < 0 ? -y : y;
 }
 
-inline uint32_t orderedBits(float f) {
-  uint32_t b;
-  std::memcpy(&b, &f, sizeof b);
-  return b ^ ((b >> 31) ? 0xFFFFFFFFu : 0x80000000u);
-}
-
 }  // namespace
 
 void normalAnglesDeg(const cv::Vec3f* normals, int count, float* pitch_deg, float* roll_deg) {
@@ -80,26 +73,105 @@ void normalAnglesDeg(const cv::Vec3f* normals, int count, float* pitch_deg, floa
     }
 }
 
-void sortAngles(std::vector<float>& values) {
-  const size_t n = values.size();
-  if (n < 2) return;
-  std::vector<float> tmp(n);
-  float* src = values.data();
-  float* dst = tmp.data();
-  for (int shift : {0, 11, 22}) {
-    uint32_t counts[2048] = {0};
-    for (size_t i = 0; i < n; ++i) ++counts[(orderedBits(src[i]) >> shift) & 2047u];
-    uint32_t sum = 0;
-    for (uint32_t& c : counts) {
-      const uint32_t k = c;
-      c = sum;
-      sum += k;
-    }
-    for (size_t i = 0; i < n; ++i) dst[counts[(orderedBits(src[i]) >> shift) & 2047u]++] = src[i];
-    std::swap(src, dst);
+void sampleRange(const float* v, size_t n, float& lo, float& hi) {
+  if (n == 0) {
+    lo = hi = std::numeric_limits<float>::quiet_NaN();
+    return;
   }
-  // Three passes: the sorted data ended in tmp.
-  values.swap(tmp);
+  // Lane-wise minima and maxima vectorise (a scalar float min/max reduction
+  // does not without -ffinite-math-only); the lanes are reduced at the end.
+  constexpr size_t kLanes = 16;
+  float mn[kLanes], mx[kLanes];
+  for (size_t j = 0; j < kLanes; ++j) mn[j] = mx[j] = v[0];
+  size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes)
+    for (size_t j = 0; j < kLanes; ++j) {
+      mn[j] = v[i + j] < mn[j] ? v[i + j] : mn[j];
+      mx[j] = v[i + j] > mx[j] ? v[i + j] : mx[j];
+    }
+  for (; i < n; ++i) {
+    mn[0] = v[i] < mn[0] ? v[i] : mn[0];
+    mx[0] = v[i] > mx[0] ? v[i] : mx[0];
+  }
+  lo = mn[0];
+  hi = mx[0];
+  for (size_t j = 1; j < kLanes; ++j) {
+    lo = mn[j] < lo ? mn[j] : lo;
+    hi = mx[j] > hi ? mx[j] : hi;
+  }
+}
+
+namespace {
+
+void insertionSort(float* a, size_t n) {
+  for (size_t i = 1; i < n; ++i) {
+    const float x = a[i];
+    size_t j = i;
+    for (; j > 0 && a[j - 1] > x; --j) a[j] = a[j - 1];
+    a[j] = x;
+  }
+}
+
+// Bucket ("spread") sort of a[0, n), tmp[0, n) scratch. The bucket of a value
+// is floor(F(a)) with F a piecewise-linear approximation of the sample's CDF
+// scaled to n (from a 256-bin histogram over [min, max]): F is monotone, so the
+// buckets are ordered, and it spreads the values ~1 per bucket even when most
+// of them sit in a narrow core (evenly spaced buckets left ~20 per core bucket
+// for the insertion sort). One insertion pass over the whole array (inversions
+// only inside buckets) finishes it; buckets of more than 32 values are sorted
+// first, recursively. (An LSD radix sort over the float bits serialised on the
+// few top-digit buckets of such a narrow range.)
+void spreadSort(float* a, size_t n, float* tmp, int depth) {
+  if (n <= 32) return insertionSort(a, n);
+  float lo, hi;
+  sampleRange(a, n, lo, hi);
+  if (!(lo < hi)) return;  // all equal
+  if (depth > 6 || !std::isfinite(lo) || !std::isfinite(hi)) return std::sort(a, a + n);
+  constexpr uint32_t kCoarse = 256;
+  const double scale = kCoarse / (static_cast<double>(hi) - lo), lo_d = lo;
+  std::vector<double> pos(n);
+  std::vector<uint32_t> key(n), end(n, 0);
+  uint32_t hist[kCoarse] = {0};
+  for (size_t i = 0; i < n; ++i) {
+    pos[i] = (static_cast<double>(a[i]) - lo_d) * scale;
+    key[i] = std::min(kCoarse - 1, static_cast<uint32_t>(pos[i]));
+  }
+  for (size_t i = 0; i < n; ++i) ++hist[key[i]];
+  double cum[kCoarse];
+  double run = 0;
+  for (uint32_t b = 0; b < kCoarse; ++b) {
+    cum[b] = run;
+    run += hist[b];
+  }
+  // Within coarse bin b the position is spread linearly over [cum_b, cum_b + hist_b):
+  // the fraction is kept below 1, so floor() stays below cum_{b+1} (monotone across bins).
+  const uint32_t last = static_cast<uint32_t>(n - 1);
+  constexpr double kBelowOne = 1.0 - 1.0 / (1 << 20);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t b = key[i];
+    const double frac = std::clamp(pos[i] - b, 0.0, kBelowOne);
+    key[i] = std::min(last, static_cast<uint32_t>(cum[b] + frac * hist[b]));
+  }
+  for (size_t i = 0; i < n; ++i) ++end[key[i]];
+  uint32_t sum = 0;
+  for (uint32_t& e : end) {  // bucket starts; the scatter below turns them into ends
+    const uint32_t c = e;
+    e = sum;
+    sum += c;
+  }
+  for (size_t i = 0; i < n; ++i) tmp[end[key[i]]++] = a[i];
+  std::copy(tmp, tmp + n, a);
+  for (uint32_t b = 0, begin = 0; b < n; begin = end[b++])
+    if (end[b] - begin > 32) spreadSort(a + begin, end[b] - begin, tmp, depth + 1);
+  insertionSort(a, n);
+}
+
+}  // namespace
+
+void sortAngles(std::vector<float>& values) {
+  if (values.size() < 2) return;
+  std::vector<float> tmp(values.size());
+  spreadSort(values.data(), values.size(), tmp.data(), 0);
 }
 
 float sortedModeDeg(const std::vector<float>& sorted, float bin_deg) {
@@ -111,15 +183,23 @@ float sortedModeDeg(const std::vector<float>& sorted, float bin_deg) {
   auto binOf = [&](float v) {
     return std::clamp(static_cast<int>(std::floor(v / bin_deg) - first), 0, bins - 1);
   };
+  // Bins of a chunk first (vectorised), then the runs of equal bins.
+  constexpr size_t kChunk = 256;
+  int bin_of[kChunk];
   int best = 0, best_count = 0, bin = binOf(sorted[0]), run = 0;
-  for (float v : sorted) {
-    const int k = binOf(v);
-    if (k != bin) {
-      if (run > best_count) best = bin, best_count = run;
-      bin = k;
-      run = 0;
+  for (size_t c = 0; c < sorted.size(); c += kChunk) {
+    const size_t m = std::min(kChunk, sorted.size() - c);
+    const float* v = sorted.data() + c;
+    for (size_t i = 0; i < m; ++i) bin_of[i] = binOf(v[i]);
+    for (size_t i = 0; i < m; ++i) {
+      const int k = bin_of[i];
+      if (k != bin) {
+        if (run > best_count) best = bin, best_count = run;
+        bin = k;
+        run = 0;
+      }
+      ++run;
     }
-    ++run;
   }
   if (run > best_count) best = bin;
   const float origin = static_cast<float>(first * bin_deg);

@@ -43,8 +43,12 @@ AngleHistogram buildAngleHistogram(const std::vector<float>& values_deg, float b
 // normal), std::atan2 elsewhere.
 void normalAnglesDeg(const cv::Vec3f* normals, int count, float* pitch_deg, float* roll_deg);
 
-// Ascending sort of finite floats in O(n): LSD radix sort, three counting-sort
-// passes of 11 bits over the order-preserving integer image of each float.
+// Smallest and largest of v[0, n) (NaN when n = 0; NaNs in v are skipped).
+void sampleRange(const float* v, size_t n, float& lo, float& hi);
+
+// Ascending sort of finite floats in ~O(n) for angle samples: a recursive
+// bucket sort, n buckets evenly spaced over [min, max] per level (std::sort
+// below depth 6 or on non-finite values).
 void sortAngles(std::vector<float>& values_deg);
 
 // buildAngleHistogram(sorted, bin_deg).modeDeg() read from an ascending sample in

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
 #include "adaptive_mean_shift.hpp"
+#include "camera_height.hpp"
 #include "entropy.hpp"
 #include "super_snv.hpp"
 
@@ -150,23 +152,40 @@ namespace nerv::snv {
 namespace {
 
 // Fast super-SNV paths against their references (STYLE.md: fast vs slow).
-TEST(snvSuperSnvFast, RadixSortEqualsStdSort) {
+TEST(snvSuperSnvFast, SortAnglesEqualsStdSort) {
+  auto expectSorted = [](std::vector<float> v, const char* what) {
+    std::vector<float> ref = v;
+    std::sort(ref.begin(), ref.end());
+    sortAngles(v);
+    ASSERT_EQ(v.size(), ref.size()) << what;
+    for (size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], ref[i]) << what << " " << i;
+  };
   for (unsigned seed : {1u, 2u, 3u}) {
     std::vector<float> v = skewedSample(20000 + 7 * seed, -0.3f * seed, seed);
     v.push_back(0.0f);
     v.push_back(-0.0f);
     v.push_back(-45.0f);
     v.push_back(1e-30f);
-    std::vector<float> ref = v;
-    std::sort(ref.begin(), ref.end());
-    sortAngles(v);
-    ASSERT_EQ(v.size(), ref.size());
-    for (size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], ref[i]) << i;
+    expectSorted(v, "skewed");
   }
-  std::vector<float> one{3.0f}, none;
-  sortAngles(one);
-  sortAngles(none);
-  EXPECT_EQ(one[0], 3.0f);
+  // Adversarial for a bucket sort: duplicates, a far outlier, geometric spacing
+  // (every level splits off only the largest value), tiny ranges, small sizes.
+  std::mt19937 rng(7);
+  std::vector<float> dup, outlier = skewedSample(5000, 0.5f, 9), geometric, tiny;
+  for (int i = 0; i < 5000; ++i) dup.push_back(static_cast<float>(rng() % 7) / 16.0f);
+  outlier.push_back(1e30f);
+  outlier.push_back(-1e30f);
+  for (int i = 0; i < 3000; ++i) geometric.push_back(std::ldexp(1.0f, -(i % 120)) * (i % 3 ? 1.0f : -1.0f));
+  for (int i = 0; i < 3000; ++i) tiny.push_back(std::nextafter(1.0f, 2.0f + static_cast<float>(rng() % 3)));
+  expectSorted(dup, "duplicates");
+  expectSorted(outlier, "outlier");
+  expectSorted(geometric, "geometric");
+  expectSorted(tiny, "tiny range");
+  expectSorted(std::vector<float>(1000, 2.5f), "all equal");
+  for (int n = 0; n < 80; ++n) {
+    std::vector<float> v = skewedSample(n, 0.0f, 100 + n);
+    expectSorted(v, "small");
+  }
 }
 
 TEST(snvSuperSnvFast, SortedModeEqualsHistogramMode) {
@@ -182,6 +201,33 @@ TEST(snvSuperSnvFast, SortedModeEqualsHistogramMode) {
     }
   }
   EXPECT_TRUE(std::isnan(sortedModeDeg({}, 0.1f)));
+}
+
+// Reference: the median by std::nth_element (mean of the middle two when even).
+float nthElementMedian(std::vector<float> v) {
+  if (v.empty()) return std::numeric_limits<float>::quiet_NaN();
+  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2 == 1) return *mid;
+  return 0.5f * (*std::max_element(v.begin(), mid) + *mid);
+}
+
+TEST(snvSuperSnvFast, SampleMedianEqualsNthElement) {
+  std::mt19937 rng(11);
+  std::vector<std::vector<float>> cases;
+  for (int n : {1, 2, 3, 255, 256, 257, 1000, 6547, 20000}) cases.push_back(skewedSample(n, 1.6f, n));
+  std::vector<float> dup, spike = skewedSample(4000, 1.65f, 3);
+  for (int i = 0; i < 4000; ++i) dup.push_back(static_cast<float>(rng() % 5) * 0.25f);
+  spike.push_back(1e20f);  // one far outlier squeezes the rest into one bucket
+  cases.push_back(dup);
+  cases.push_back(spike);
+  cases.push_back(std::vector<float>(600, 1.65f));
+  for (const auto& v : cases) {
+    const std::vector<float> before = v;
+    EXPECT_EQ(sampleMedian(v), nthElementMedian(v)) << "n " << v.size();
+    EXPECT_EQ(v, before);
+  }
+  EXPECT_TRUE(std::isnan(sampleMedian({})));
 }
 
 TEST(snvSuperSnvFast, PolynomialAnglesEqualAtan2) {

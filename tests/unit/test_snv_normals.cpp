@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "ground_samples.hpp"
 #include "integral_normals.hpp"
 #include "local_normals.hpp"
 #include "naive_normals.hpp"
@@ -315,8 +316,111 @@ TEST(snvIntegralNormals, NormalRowAnyStartAndStep) {
           const bool has = r >= 1 && field.normalAt(u, v, r, n);
           const cv::Vec3f a(row.nx[i], row.ny[i], row.nz[i]);
           ASSERT_EQ(finiteVec(a), has) << u << "," << v;
-          if (has) ASSERT_LT(angleDeg(a, n) * CV_PI / 180.0, 1e-4) << u << "," << v;
+          if (has) {
+            ASSERT_LT(angleDeg(a, n) * CV_PI / 180.0, 1e-4) << u << "," << v;
+          }
         }
+      }
+    }
+  }
+}
+
+// The vectorised row prefix sums (8 lanes and a scalar tail) and the reused
+// buffers against cv::integral of the same edge map and fixed-point values, on
+// widths that are not multiples of 8, bands of different sizes, and a field
+// reused across images of different sizes.
+TEST(snvIntegralNormals, IntegralImagesEqualCvIntegral) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat full = clutteredScene(c, 1.0f / 16);
+  IntegralNormalField reused;
+  struct Case {
+    int width, row0, row1, threads;  // threads: row chunks accumulated apart, then offset
+  };
+  const int threads_before = cv::getNumThreads();
+  for (const Case k : {Case{c.width, 100, 330, 2}, Case{1237, 0, c.height, 2}, Case{13, 40, 90, 2},
+                       Case{c.width - 3, 200, 375, 1}, Case{c.width, 150, 160, 2}, Case{c.width, 0, 375, 1}}) {
+    cv::setNumThreads(k.threads);
+    const cv::Mat d = full(cv::Rect(0, 0, k.width, c.height)).clone();
+    StereoCamera ck = c;
+    ck.width = k.width;
+    reused.prepare(d, ck, IntegralNormalParams{}, k.row0, k.row1);
+    IntegralNormalField fresh;
+    fresh.prepare(d, ck, IntegralNormalParams{}, k.row0, k.row1);
+    SCOPED_TRACE(::testing::Message() << "width " << k.width << " rows " << k.row0 << ".." << k.row1
+                                      << " threads " << k.threads);
+    ASSERT_TRUE(reused.fixedPoint());
+    // Edge map rebuilt from the definition: invalid, or a jump to the right or below.
+    const cv::Mat band = d.rowRange(k.row0, k.row1);
+    cv::Mat edge(band.size(), CV_8U), fixed(band.size(), CV_64F);  // 256 * d, exact integers
+    for (int y = 0; y < band.rows; ++y)
+      for (int u = 0; u < band.cols; ++u) {
+        const int v = y + k.row0;
+        const float x = d.at<float>(v, u);
+        const float right = u + 1 < d.cols ? d.at<float>(v, u + 1) : x;
+        const float below = v + 1 < d.rows ? d.at<float>(v + 1, u) : x;
+        const float thr = std::max(1.0f, 0.05f * x);
+        const bool valid = x > 0.0f && x < 1e6f;
+        edge.at<uchar>(y, u) = !valid || std::abs(right - x) > thr || std::abs(below - x) > thr;
+        fixed.at<double>(y, u) = valid ? std::round(x * 256.0) : 0.0;
+      }
+    cv::Mat edge_ref, value_ref;
+    cv::integral(edge, edge_ref, CV_32S);
+    cv::integral(fixed, value_ref, CV_64F);
+    for (const IntegralNormalField* f : {&reused, &fresh}) {
+      ASSERT_EQ(f->edgeIntegral().size(), edge_ref.size());
+      EXPECT_EQ(cv::countNonZero(f->edgeIntegral() != edge_ref), 0);
+      int differ = 0;
+      for (int y = 0; y < value_ref.rows; ++y)
+        for (int u = 0; u < value_ref.cols; ++u)
+          differ += f->valueIntegral().at<uint32_t>(y, u) !=
+                    static_cast<uint32_t>(static_cast<int64_t>(value_ref.at<double>(y, u)));
+      EXPECT_EQ(differ, 0);
+    }
+  }
+  cv::setNumThreads(threads_before);
+}
+
+// Ground samples of the row path (candidates tested a grid row at a time,
+// normals over the candidates' span) against a per-pixel reference built from
+// isGroundCandidate, adaptiveRadius and normalAt: same pixels, same points,
+// normals within 1e-4 rad; with and without a ground model, intervals 1..5.
+TEST(snvGroundSamples, RowPathEqualsPerPixelReference) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat d = clutteredScene(c, 1.0f / 16);
+  const GroundModel model = test::roadModel(c, 0.6, -0.4, 1.6);  // the scene's road
+  GroundSampleParams gp;
+  const float min_up = static_cast<float>(std::cos(gp.prior_cone_deg * CV_PI / 180.0));
+  for (const GroundModel& m : {GroundModel{}, model}) {
+    const cv::Range rows = groundRows(c, m, gp);
+    IntegralNormalField field;
+    field.prepare(d, c, IntegralNormalParams{}, std::max(0, rows.start - 17), rows.end);
+    for (int k = 1; k <= 5; ++k) {
+      SCOPED_TRACE(::testing::Message() << "model " << m.valid << " interval " << k);
+      const std::vector<GroundSample> fast = selectGroundSamples(field, d, c, m, gp, rows, k);
+      std::vector<GroundSample> ref;
+      for (int v = (rows.start + k - 1) / k * k; v < rows.end; v += k)
+        for (int u = 0; u < c.width; u += k) {
+          if (!isGroundCandidate(v, d.at<float>(v, u), c, m, gp)) continue;
+          const int r = field.adaptiveRadius(u, v);
+          cv::Vec3f n;
+          if (r < 1 || !field.normalAt(u, v, r, n) || !(-n[1] >= min_up)) continue;
+          GroundSample s;
+          s.u = u;
+          s.v = v;
+          s.n = n;
+          s.d = d.at<float>(v, u);
+          const float z = static_cast<float>(c.fx * c.baseline_m) / s.d;
+          s.p = cv::Vec3f(static_cast<float>((u - c.cx) / c.fx) * z, static_cast<float>((v - c.cy) / c.fy) * z, z);
+          ref.push_back(s);
+        }
+      ASSERT_EQ(fast.size(), ref.size());
+      EXPECT_GT(ref.size(), 20000u / (k * k));
+      for (size_t i = 0; i < ref.size(); ++i) {
+        ASSERT_EQ(fast[i].u, ref[i].u);
+        ASSERT_EQ(fast[i].v, ref[i].v);
+        ASSERT_EQ(fast[i].d, ref[i].d);
+        ASSERT_EQ(fast[i].p, ref[i].p) << ref[i].u << "," << ref[i].v;
+        ASSERT_LT(angleDeg(fast[i].n, ref[i].n) * CV_PI / 180.0, 1e-4);
       }
     }
   }
