@@ -12,6 +12,7 @@
 #include "integral_normals.hpp"
 #include "local_normals.hpp"
 #include "roi_normal_stats.hpp"
+#include "slope_pitch.hpp"
 #include "super_snv.hpp"
 
 namespace nerv::snv {
@@ -103,6 +104,10 @@ Params readParams(ConfigSection& s) {
   s.get("plane_fit", p.plane_fit);
   s.get("plane_tukey_k", p.plane_tukey_k, 1.0, 20.0);
   s.get("residual_entropy_bin", p.residual_entropy_bin, 1e-4, 1.0);
+  s.get("pitch_source", p.pitch_source, {"mean_shift", "slope"});
+  s.get("slope_inliers_only", p.slope_inliers_only);
+  s.get("slope_mean_shift", p.slope_mean_shift);
+  s.get("slope_tukey_k", p.slope_tukey_k, 1.0, 20.0);
   s.get("filter_adaptive", p.filter_adaptive);
   s.get("entropy_full_scale_bits", p.entropy_full_scale_bits, 0.1, 30.0);
   s.get("min_confidence", p.min_confidence, 0.0, 1.0);
@@ -212,6 +217,33 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
           res[i] = static_cast<float>(samples[i].d - plane.disparity(cam, samples[i].u, samples[i].v)) /
                    samples[i].d;
         pose.entropy = sampleEntropyBits(res, params_.residual_entropy_bin);
+      }
+    }
+    if (params_.pitch_source == "slope") {
+      // Instant pitch from the normalised vertical slopes (slope_pitch.hpp), whose
+      // residual is linear in the disparity noise; the mean shift on the per-normal
+      // pitch is biased by that pitch's skewed noise. Started from the mean shift,
+      // at the roll chosen above.
+      const float lo = ep.shift.estimate - ep.shift.radius, hi = ep.shift.estimate + ep.shift.radius;
+      std::vector<SlopeSample> slopes;
+      slopes.reserve(samples.size());
+      for (const GroundSample& s : samples) {
+        if (params_.slope_inliers_only) {
+          const float pd = normalPitchDeg(s.n);
+          if (pd < lo || pd > hi) continue;
+        }
+        slopes.push_back({static_cast<float>(s.u), static_cast<float>(s.v),
+                          normalisedVerticalSlope(s.n, static_cast<float>(s.u), static_cast<float>(s.v), cam)});
+      }
+      SlopePitchParams sp;
+      sp.mean_shift = params_.slope_mean_shift;
+      sp.fraction = params_.mean_shift_fraction;
+      sp.tukey_k = params_.slope_tukey_k;
+      const SlopePitchResult fit = fitSlopePitch(slopes, cam, pose.instant_roll_deg, pose.instant_pitch_deg, sp);
+      if (fit.valid) {
+        pose.instant_pitch_deg = fit.pitch_deg;
+        instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
+        pose.instant_height_m = medianCameraHeight(points, instant_normal);
       }
     }
     pose.confidence = entropyConfidence(pose.entropy, params_.entropy_full_scale_bits);

@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <string>
 #include <vector>
 
 #include "config.hpp"
@@ -42,6 +43,13 @@ struct Params {
   bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
   float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
   float residual_entropy_bin = 0.01f;    // entropy bin of the relative plane residuals (d - d_plane) / d
+
+  // Instant pitch source (slope_pitch.hpp): "mean_shift" = the super-SNV mean-shift value,
+  // "slope" = robust fit of the ground samples' normalised vertical slopes (linear in the noise).
+  std::string pitch_source = "mean_shift";
+  bool slope_inliers_only = false;       // slope fit only on the super-SNV mean-shift window's samples
+  bool slope_mean_shift = false;         // slope fit location: adaptive mean shift instead of Tukey
+  float slope_tukey_k = 4.685f;          // its biweight cut-off in robust sigmas
 
   // Pose quality and filter.
   float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this
