@@ -222,19 +222,21 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
         pose.entropy = sampleEntropyBits(res, params_.residual_entropy_bin);
       }
     }
+    // The samples whose per-normal pitch lies in the final mean-shift window.
+    const float win_lo = ep.shift.estimate - ep.shift.radius, win_hi = ep.shift.estimate + ep.shift.radius;
+    const auto inShiftWindow = [&](const GroundSample& s) {
+      const float pd = normalPitchDeg(s.n);
+      return pd >= win_lo && pd <= win_hi;
+    };
     if (params_.pitch_source == "slope") {
       // Instant pitch from the normalised vertical slopes (slope_pitch.hpp), whose
       // residual is linear in the disparity noise; the mean shift on the per-normal
       // pitch is biased by that pitch's skewed noise. Started from the mean shift,
       // at the roll chosen above.
-      const float lo = ep.shift.estimate - ep.shift.radius, hi = ep.shift.estimate + ep.shift.radius;
       std::vector<SlopeSample> slopes;
       slopes.reserve(samples.size());
       for (const GroundSample& s : samples) {
-        if (params_.slope_inliers_only) {
-          const float pd = normalPitchDeg(s.n);
-          if (pd < lo || pd > hi) continue;
-        }
+        if (params_.slope_inliers_only && !inShiftWindow(s)) continue;
         slopes.push_back({static_cast<float>(s.u), static_cast<float>(s.v),
                           normalisedVerticalSlope(s.n, static_cast<float>(s.u), static_cast<float>(s.v), cam)});
       }
@@ -258,14 +260,10 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       // matchers bias low by 1-20 %, docs/snv.md). A region with biased disparity
       // can capture the plane (puddles on wet_road, nerv_sgm patches): then it
       // disagrees with the mean shift by more than the gate and the mean shift is kept.
-      const float lo = ep.shift.estimate - ep.shift.radius, hi = ep.shift.estimate + ep.shift.radius;
       std::vector<PlanePoint> pts;
       pts.reserve(samples.size());
       for (const GroundSample& s : samples) {
-        if (params_.plane_pitch_inliers_only) {
-          const float pd = normalPitchDeg(s.n);
-          if (pd < lo || pd > hi) continue;
-        }
+        if (params_.plane_pitch_inliers_only && !inShiftWindow(s)) continue;
         pts.push_back({static_cast<float>(s.u), static_cast<float>(s.v), s.d});
       }
       const DisparityPlane start = planeFromNormal(instant_normal, pose.instant_height_m, cam);
