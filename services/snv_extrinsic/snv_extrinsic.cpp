@@ -1,6 +1,7 @@
 #include "snv_extrinsic.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -12,6 +13,7 @@
 #include "integral_normals.hpp"
 #include "local_normals.hpp"
 #include "roi_normal_stats.hpp"
+#include "slope_pitch.hpp"
 #include "super_snv.hpp"
 
 namespace nerv::snv {
@@ -103,6 +105,12 @@ Params readParams(ConfigSection& s) {
   s.get("plane_fit", p.plane_fit);
   s.get("plane_tukey_k", p.plane_tukey_k, 1.0, 20.0);
   s.get("residual_entropy_bin", p.residual_entropy_bin, 1e-4, 1.0);
+  s.get("pitch_source", p.pitch_source, {"mean_shift", "slope", "plane"});
+  s.get("plane_pitch_inliers_only", p.plane_pitch_inliers_only);
+  s.get("plane_pitch_gate_deg", p.plane_pitch_gate_deg, 0.0, 90.0);
+  s.get("slope_inliers_only", p.slope_inliers_only);
+  s.get("slope_mean_shift", p.slope_mean_shift);
+  s.get("slope_tukey_k", p.slope_tukey_k, 1.0, 20.0);
   s.get("filter_adaptive", p.filter_adaptive);
   s.get("entropy_full_scale_bits", p.entropy_full_scale_bits, 0.1, 30.0);
   s.get("min_confidence", p.min_confidence, 0.0, 1.0);
@@ -212,6 +220,61 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
           res[i] = static_cast<float>(samples[i].d - plane.disparity(cam, samples[i].u, samples[i].v)) /
                    samples[i].d;
         pose.entropy = sampleEntropyBits(res, params_.residual_entropy_bin);
+      }
+    }
+    // The samples whose per-normal pitch lies in the final mean-shift window.
+    const float win_lo = ep.shift.estimate - ep.shift.radius, win_hi = ep.shift.estimate + ep.shift.radius;
+    const auto inShiftWindow = [&](const GroundSample& s) {
+      const float pd = normalPitchDeg(s.n);
+      return pd >= win_lo && pd <= win_hi;
+    };
+    if (params_.pitch_source == "slope") {
+      // Instant pitch from the normalised vertical slopes (slope_pitch.hpp), whose
+      // residual is linear in the disparity noise; the mean shift on the per-normal
+      // pitch is biased by that pitch's skewed noise. Started from the mean shift,
+      // at the roll chosen above.
+      std::vector<SlopeSample> slopes;
+      slopes.reserve(samples.size());
+      for (const GroundSample& s : samples) {
+        if (params_.slope_inliers_only && !inShiftWindow(s)) continue;
+        slopes.push_back({static_cast<float>(s.u), static_cast<float>(s.v),
+                          normalisedVerticalSlope(s.n, static_cast<float>(s.u), static_cast<float>(s.v), cam)});
+      }
+      SlopePitchParams sp;
+      sp.mean_shift = params_.slope_mean_shift;
+      sp.fraction = params_.mean_shift_fraction;
+      sp.tukey_k = params_.slope_tukey_k;
+      const SlopePitchResult fit = fitSlopePitch(slopes, cam, pose.instant_roll_deg, pose.instant_pitch_deg, sp);
+      if (fit.valid) {
+        pose.instant_pitch_deg = fit.pitch_deg;
+        instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
+        pose.instant_height_m = medianCameraHeight(points, instant_normal);
+      }
+    }
+    if (params_.plane_fit && params_.pitch_source == "plane") {
+      // Pitch from a second plane fit on the samples whose per-normal pitch lies in
+      // the mean-shift window (road-like orientation; kerbs, car bodies and the
+      // far rows' fattened patches mostly fall outside), started from the
+      // mean-shift pitch and the plane roll. Unlike the per-normal pitch it uses
+      // disparity levels over the whole road extent, not 2r-row slopes (which the
+      // matchers bias low by 1-20 %, docs/snv.md). A region with biased disparity
+      // can capture the plane (puddles on wet_road, nerv_sgm patches): then it
+      // disagrees with the mean shift by more than the gate and the mean shift is kept.
+      std::vector<PlanePoint> pts;
+      pts.reserve(samples.size());
+      for (const GroundSample& s : samples) {
+        if (params_.plane_pitch_inliers_only && !inShiftWindow(s)) continue;
+        pts.push_back({static_cast<float>(s.u), static_cast<float>(s.v), s.d});
+      }
+      const DisparityPlane start = planeFromNormal(instant_normal, pose.instant_height_m, cam);
+      PlaneFitParams fit;
+      fit.tukey_k = params_.plane_tukey_k;
+      const DisparityPlane plane = fitDisparityPlane(pts, cam, fit, &start);
+      const float plane_pitch = plane.valid ? normalPitchDeg(planeNormal(plane, cam)) : 0.0f;
+      if (plane.valid && std::abs(plane_pitch - pose.instant_pitch_deg) <= params_.plane_pitch_gate_deg) {
+        pose.instant_pitch_deg = plane_pitch;
+        instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
+        pose.instant_height_m = medianCameraHeight(points, instant_normal);
       }
     }
     pose.confidence = entropyConfidence(pose.entropy, params_.entropy_full_scale_bits);

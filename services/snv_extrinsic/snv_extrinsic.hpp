@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <string>
 #include <vector>
 
 #include "config.hpp"
@@ -43,6 +44,19 @@ struct Params {
   bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
   float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
   float residual_entropy_bin = 0.01f;    // entropy bin of the relative plane residuals (d - d_plane) / d
+
+  // Instant pitch source (docs/snv.md "pitch_oscillation"): "plane" = a second robust plane
+  // fit (ground_plane_fit.hpp) on the ground samples inside the super-SNV mean-shift window,
+  // started from the mean-shift pitch and the plane roll, kept when it is within
+  // plane_pitch_gate_deg of the mean shift (else the mean shift); "mean_shift" = the super-SNV
+  // mean-shift value; "slope" = robust fit of the samples' normalised vertical slopes
+  // (slope_pitch.hpp; linear in the noise, but the matchers' local slopes are biased low).
+  std::string pitch_source = "plane";
+  bool plane_pitch_inliers_only = true;  // "plane": only samples inside the mean-shift window
+  float plane_pitch_gate_deg = 0.5f;     // "plane": keep the mean shift when the plane differs by more [deg]
+  bool slope_inliers_only = false;       // "slope": only samples inside the mean-shift window
+  bool slope_mean_shift = false;         // "slope": location by adaptive mean shift instead of Tukey
+  float slope_tukey_k = 4.685f;          // "slope": biweight cut-off in robust sigmas
 
   // Pose quality and filter.
   float entropy_full_scale_bits = 6.0f;  // confidence = 1 - H / this

@@ -2,13 +2,18 @@
 // filter, and the real KITTI sequence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
+#include "adaptive_mean_shift.hpp"
 #include "ground_plane_fit.hpp"
+#include "integral_normals.hpp"
 #include "pose_filter.hpp"
 #include "snv_extrinsic.hpp"
 #include "snv_test_scenes.hpp"
+#include "slope_pitch.hpp"
 #include "super_snv.hpp"
 
 namespace nerv::snv {
@@ -81,6 +86,125 @@ TEST(snvPlaneFit, RecoversRoadPlaneDespiteSidewalkAndOutliers) {
   EXPECT_NEAR(normalRollDeg(planeNormal(exact, c)), roll, 1e-3);
   EXPECT_NEAR(planeHeightM(exact, c), h, 1e-5);
   EXPECT_NEAR(exact.disparity(c, 600, 300), test::planeDisparity(c, n, h, 600, 300), 1e-3);
+}
+
+// Box mean of the disparity over the (2r+1)^2 window at (u, v), brute force.
+double boxMean(const cv::Mat& d, int u, int v, int r) {
+  double s = 0;
+  for (int y = v - r; y <= v + r; ++y)
+    for (int x = u - r; x <= u + r; ++x) s += d.at<float>(y, x);
+  return s / ((2 * r + 1) * (2 * r + 1));
+}
+
+// The slope a normal carries (slope_pitch.hpp) equals the reference
+// (S(v+r) - S(v-r)) / (2r) / ((S(v+r) + S(v-r)) / 2) from brute-force box means of
+// a noisy road disparity, at every tested pixel and radius.
+TEST(snvSlopePitch, NormalCarriesTheBoxMeanSlope) {
+  const StereoCamera c = test::kittiCamera();
+  cv::Mat d = test::roadDisparity(c, 1.5, -0.8, 1.6);
+  cv::RNG rng(3);
+  for (int v = 0; v < d.rows; ++v)
+    for (int u = 0; u < d.cols; ++u)
+      if (d.at<float>(v, u) > 0) d.at<float>(v, u) += static_cast<float>(rng.gaussian(0.15));
+  IntegralNormalField field;
+  field.prepare(d, c, IntegralNormalParams{});
+  int checked = 0;
+  for (int v = 220; v < 350; v += 13)
+    for (int u = 40; u < 1200; u += 97) {
+      const int r = field.adaptiveRadius(u, v);
+      cv::Vec3f n;
+      if (r < 1 || !field.normalAt(u, v, r, n)) continue;
+      if (n[1] > 0) n = -n;  // up
+      const double sd = boxMean(d, u, v + r, r), su = boxMean(d, u, v - r, r);
+      const double ref = (sd - su) / (2.0 * r) / (0.5 * (sd + su));
+      EXPECT_NEAR(normalisedVerticalSlope(n, float(u), float(v), c), ref, 1e-3 * std::abs(ref) + 1e-7)
+          << u << "," << v << " r " << r;
+      ++checked;
+    }
+  EXPECT_GT(checked, 50);
+}
+
+// Slope samples of the road (pitch, roll) on a grid below the horizon; noise_px
+// is added to the slope in disparity units (beta = (b + e) / d), so it is
+// symmetric in disparity, skewed in the per-normal pitch.
+std::vector<SlopeSample> roadSlopes(const StereoCamera& c, double pitch, double roll, double h,
+                                    double noise_px, cv::RNG& rng) {
+  const cv::Vec3d n = test::roadNormal(pitch, roll);
+  std::vector<SlopeSample> out;
+  for (int v = 200; v < c.height; v += 4)
+    for (int u = 0; u < c.width; u += 4) {
+      const double dd = test::planeDisparity(c, n, h, u, v);
+      if (dd < 5) continue;
+      const double b = test::planeDisparity(c, n, h, u, v + 1) - dd;
+      out.push_back({float(u), float(v), float((b + rng.gaussian(noise_px)) / dd)});
+    }
+  return out;
+}
+
+// Reference for the Tukey fit with a huge cut-off (every weight ~1): the pitch
+// where the linearised deviations sum to zero, F(theta) = sum (beta_i -
+// beta(theta)) / (d beta / d theta), found by bisection with numeric derivatives.
+double bisectionPitch(const std::vector<SlopeSample>& s, const StereoCamera& c, double roll) {
+  auto F = [&](double th) {
+    double sum = 0;
+    for (const SlopeSample& x : s) {
+      const double b0 = roadNormalisedSlope(float(th), float(roll), x.u, x.v, c);
+      const double g = (roadNormalisedSlope(float(th + 1e-3), float(roll), x.u, x.v, c) -
+                        roadNormalisedSlope(float(th - 1e-3), float(roll), x.u, x.v, c)) / 2e-3;
+      sum += (x.beta - b0) / g;
+    }
+    return sum;
+  };
+  double lo = -5, hi = 5;
+  const bool rising = F(hi) > F(lo);
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((F(mid) > 0) == rising ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(snvSlopePitch, ExactSlopesGiveThePitch) {
+  const StereoCamera c = test::kittiCamera();
+  cv::RNG rng(1);
+  for (const Case k : {Case{0.0, 0.0, 1.65}, Case{-2.0, 0.8, 1.4}, Case{3.5, -1.5, 2.1}}) {
+    const std::vector<SlopeSample> s = roadSlopes(c, k.pitch_deg, k.roll_deg, k.height_m, 0.0, rng);
+    for (bool ms : {false, true}) {
+      SlopePitchParams p;
+      p.mean_shift = ms;
+      const SlopePitchResult r = fitSlopePitch(s, c, float(k.roll_deg), float(k.pitch_deg + 2.0), p);
+      ASSERT_TRUE(r.valid);
+      EXPECT_NEAR(r.pitch_deg, k.pitch_deg, 2e-3) << "mean shift " << ms;
+    }
+  }
+}
+
+TEST(snvSlopePitch, TukeyFitEqualsBisectionReferenceAndIsUnbiased) {
+  const StereoCamera c = test::kittiCamera();
+  cv::RNG rng(5);
+  const double pitch = -1.2, roll = 0.5;
+  // Slope noise 0.1 px/px: the per-normal pitch atan(1/(fy beta) - (v-cy)/fy) is then skewed.
+  const std::vector<SlopeSample> s = roadSlopes(c, pitch, roll, 1.6, 0.1, rng);
+  SlopePitchParams p;
+  p.tukey_k = 1e4f;  // weights ~1: least squares in the linearised pitch
+  const SlopePitchResult r = fitSlopePitch(s, c, float(roll), 0.0f, p);
+  ASSERT_TRUE(r.valid);
+  EXPECT_NEAR(r.pitch_deg, bisectionPitch(s, c, roll), 2e-3);
+  SlopePitchParams robust;  // default Tukey cut-off: close to the truth as well
+  EXPECT_NEAR(fitSlopePitch(s, c, float(roll), 0.0f, robust).pitch_deg, pitch, 0.05);
+  // At roll 0 the per-sample pitch by division, atan(1/(fy beta) - (v-cy)/fy),
+  // is skewed: the super-SNV adaptive mean shift on it (a mode seeker) is off,
+  // the fit is not. (Its median is not: a monotone map keeps the median.)
+  const std::vector<SlopeSample> s0 = roadSlopes(c, pitch, 0.0, 1.6, 0.1, rng);
+  const float fit0 = fitSlopePitch(s0, c, 0.0f, 0.0f, robust).pitch_deg;
+  EXPECT_NEAR(fit0, pitch, 0.05);
+  std::vector<float> direct;
+  for (const SlopeSample& x : s0)
+    direct.push_back(float(std::atan((1.0 / (c.fy * x.beta)) - (x.v - c.cy) / c.fy) * 180 / CV_PI));
+  std::sort(direct.begin(), direct.end());
+  const float shift = adaptiveMeanShift(direct, direct[direct.size() / 2], 0.5f, 0.01f).estimate;
+  std::printf("slope fit %.3f, mean shift on the per-sample pitch %.3f, true %.3f deg\n", fit0, shift, pitch);
+  EXPECT_GT(std::abs(shift - pitch), 3 * std::abs(fit0 - pitch));
 }
 
 TEST(snvPose, NoGroundMeansNoPose) {
