@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
   const StereoCamera& cam = spec.camera.intrinsics;
   std::vector<Stats> stats(matchers.size());
   std::vector<std::unique_ptr<stereo::StereoMatcher>> impl(matchers.size());
-  std::vector<snv::SnvExtrinsicEstimator> est(matchers.size(), snv::SnvExtrinsicEstimator{snv::Params{}});
+  std::vector<std::unique_ptr<snv::SnvExtrinsicEstimator>> est;  // not copyable: it keeps its buffers
+  for (size_t m = 0; m < matchers.size(); ++m) est.push_back(std::make_unique<snv::SnvExtrinsicEstimator>(snv::Params{}));
   for (size_t m = 0; m < matchers.size(); ++m)
     if (matchers[m] != "sgbm_test" && matchers[m] != "gt" && matchers[m] != "gt_mask_nerv") {
       stereo::Params p = base;
@@ -238,7 +239,7 @@ int main(int argc, char** argv) {
           }
         }
       }
-      const snv::SnvResult res = est[m].process(d, cam, {}, GroundModel{});
+      const snv::SnvResult res = est[m]->process(d, cam, {}, GroundModel{});
       s.pitch_err.push_back(res.pose.instant_pitch_deg - pose.pitch_deg);
       s.roll_err.push_back(res.pose.instant_roll_deg - pose.roll_deg);
       s.height_err.push_back(res.pose.instant_height_m - pose.height_m);
