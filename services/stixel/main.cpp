@@ -1,7 +1,8 @@
-// stixel service: DISPARITY (+ latest EXTRINSICS as ground prior) -> STIXELS.
+// stixel service: DISPARITY (+ a recent earlier frame's EXTRINSICS as ground prior) -> STIXELS.
 #include <chrono>
 
 #include "message_convert.hpp"
+#include "prior_selection.hpp"
 #include "service_config.hpp"
 #include "stixel_estimator.hpp"
 
@@ -15,16 +16,18 @@ int serve(ServiceConfig& config) {
   config.section().get("queue", queue, 1, 100);
   float min_prior_confidence = 0.3f;
   config.section().get("min_prior_confidence", min_prior_confidence, 0.0, 1.0);
+  int max_prior_age_frames = 30;
+  config.section().get("max_prior_age_frames", max_prior_age_frames, 0, 100000);
   config.finish();
 
   Node node(config.nodeOptions());
-  stixel::GroundPrior prior;
+  stixel::PriorSelection priors(max_prior_age_frames);
   cv::Mat disparity;
 
   node.subscribe<extrinsics_t>("EXTRINSICS", [&](const extrinsics_t& e) {
     if (Problem p = checkExtrinsics(e)) return node.error(p.counter, p.message);
     if (!e.valid || e.confidence < min_prior_confidence) return;
-    prior = {true, e.pitch_deg, e.roll_deg, e.height_m};
+    priors.offer(e.header.seq, {true, e.pitch_deg, e.roll_deg, e.height_m});
   }, 10);
 
   node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
@@ -36,7 +39,8 @@ int serve(ServiceConfig& config) {
     node.countIn();
 
     const auto start = std::chrono::steady_clock::now();
-    const stixel::StixelResult result = stixel::estimateStixels(disparity, toCamera(msg.calib), params, prior);
+    const stixel::StixelResult result = stixel::estimateStixels(disparity, toCamera(msg.calib), params,
+                                                                       priors.forFrame(msg.header.seq));
     stixels_t out;
     out.header = msg.header;
     out.ground = toMessage(result.ground);

@@ -1,0 +1,39 @@
+#include "prior_selection.hpp"
+
+#include <algorithm>
+
+namespace nerv::stixel {
+
+PriorSelection::PriorSelection(int max_age_frames, int capacity)
+    : max_age_frames_(std::max(0, max_age_frames)), capacity_(static_cast<size_t>(std::max(1, capacity))) {
+  entries_.reserve(capacity_);
+}
+
+void PriorSelection::offer(int64_t seq, const GroundPrior& prior) {
+  if (!prior.valid) return;
+  // A pose for a frame already remembered replaces it (a repeated message).
+  for (Entry& e : entries_)
+    if (e.seq == seq) {
+      e.prior = prior;
+      return;
+    }
+  // Oldest offer first out (not lowest seq): after a restart the old drive's
+  // high seqs must leave as the new drive's poses come in.
+  if (entries_.size() < capacity_) {
+    entries_.push_back({seq, prior});
+  } else {
+    entries_[next_] = {seq, prior};
+  }
+  next_ = (next_ + 1) % capacity_;
+}
+
+GroundPrior PriorSelection::forFrame(int64_t seq) const {
+  const Entry* best = nullptr;
+  for (const Entry& e : entries_) {
+    if (e.seq >= seq || seq - e.seq > max_age_frames_) continue;
+    if (!best || e.seq > best->seq) best = &e;
+  }
+  return best ? best->prior : GroundPrior{};
+}
+
+}  // namespace nerv::stixel
