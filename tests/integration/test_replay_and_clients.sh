@@ -12,8 +12,8 @@ tmp=$(mktemp -d)
 trap 'stop_children; rm -rf "$tmp"' EXIT
 
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/live" --rate 10 >/dev/null 2>&1 || fail "live run"
-"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r1" --speed 1 2>/dev/null || fail "replay 1"
-"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r2" --speed 1 2>/dev/null || fail "replay 2"
+"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r1" --speed 0.5 2>/dev/null || fail "replay 1"
+"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r2" --speed 0.5 2>/dev/null || fail "replay 2"
 no_survivors || fail "processes survived a replay"
 ch=STIXELS,EXTRINSICS,SURFACE_NORMALS,DETECTIONS
 "$BIN/nerv_diff" "$tmp/r1/nerv.lcmlog" "$tmp/r2/nerv.lcmlog" --channels $ch || fail "two replays differ"

@@ -15,7 +15,7 @@ seq20=$(synthetic_sequence urban 20)
 cp "$NERV_ROOT/config/pipeline.yaml" "$tmp/sharded.yaml"
 printf 'run:\n  shards:\n    stereo_matcher: 2\n' >>"$tmp/sharded.yaml"
 "$NERV_ROOT/tools/nerv" run --data "$seq20" --out "$tmp/shards" --config "$tmp/sharded.yaml" \
-  --rate 10 >/dev/null 2>&1 || fail "sharded run"
+  --rate 5 >/dev/null 2>&1 || fail "sharded run"
 json "$tmp/shards/nerv.lcmlog" >"$tmp/shards.jsonl"
 seqs=$(grep '"channel":"DISPARITY"' "$tmp/shards.jsonl" | grep -o '"header":{"seq":[0-9]*' | sort)
 [[ $(echo "$seqs" | wc -l) -eq 20 && $(echo "$seqs" | sort -u | wc -l) -eq 20 ]] \
