@@ -41,7 +41,7 @@ frames=$(od -An -tu4 -j48 -N4 "$out/render/render.avi" | tr -d ' ')
 pass "MJPG AVI with 6 frames"
 
 NERV_RENDER_LOG="$log" NERV_RENDER_DIR="$out/render" "$NERV_BUILD/tests/test_render_overlay" \
-  --gtest_filter=RenderOverlay.PipelineLogBoxesAtTheirPixels >"$out/boxes.txt" 2>&1 \
+  --gtest_filter=renderOverlay.PipelineLogBoxesAtTheirPixels >"$out/boxes.txt" 2>&1 \
   || fail "boxes not at their pixels: $(grep -E 'Failure|is ' "$out/boxes.txt" | head -n 6)"
 grep -q '^\[  PASSED  \] 1 test' "$out/boxes.txt" || fail "box check did not run: $(tail -n 3 "$out/boxes.txt")"
 pass "$(grep -o 'checked .*' "$out/boxes.txt")"

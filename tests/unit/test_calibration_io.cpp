@@ -39,7 +39,7 @@ const char* kP3 = "7.215377e+02 0.000000e+00 6.095593e+02 -3.395242e+02 0.000000
 
 }  // namespace
 
-TEST(CalibrationIo, PlainYamlFromSharedData) {
+TEST(commonCalibrationIo, PlainYamlFromSharedData) {
   const std::string path = kShared + "/kitti_raw_0926_seq/calib.yaml";
   if (!fs::exists(path)) GTEST_SKIP() << "../shared/data is absent";
   const StereoCamera c = loadPlainCalibration(path);
@@ -48,7 +48,7 @@ TEST(CalibrationIo, PlainYamlFromSharedData) {
   expectKitti0926(c);
 }
 
-TEST(CalibrationIo, KittiObjectMatchesSharedExcerpt) {
+TEST(commonCalibrationIo, KittiObjectMatchesSharedExcerpt) {
   // The P_rect lines of kitti2015_000005 rewritten in the object format.
   const std::string excerpt = kShared + "/kitti2015_000005/calib_cam_to_cam_excerpt.txt";
   if (!fs::exists(excerpt)) GTEST_SKIP() << "../shared/data is absent";
@@ -62,7 +62,7 @@ TEST(CalibrationIo, KittiObjectMatchesSharedExcerpt) {
   fs::remove_all(dir);
 }
 
-TEST(CalibrationIo, KittiRawCamToCam) {
+TEST(commonCalibrationIo, KittiRawCamToCam) {
   const fs::path dir = tempDir("raw");
   write(dir / "calib_cam_to_cam.txt",
         std::string("calib_time: 09-Jan-2012 13:57:47\ncorner_dist: 9.950000e-02\n"
@@ -75,7 +75,7 @@ TEST(CalibrationIo, KittiRawCamToCam) {
   fs::remove_all(dir);
 }
 
-TEST(CalibrationIo, ErrorsNameTheProblem) {
+TEST(commonCalibrationIo, ErrorsNameTheProblem) {
   const fs::path dir = tempDir("bad");
   EXPECT_THROW(loadPlainCalibration((dir / "missing.yaml").string()), CalibrationError);
   write(dir / "nan.yaml", "width: 10\nheight: 10\nfx: .nan\nfy: 1\ncx: 1\ncy: 1\nbaseline_m: 0.5\n");
@@ -99,7 +99,7 @@ TEST(CalibrationIo, ErrorsNameTheProblem) {
   fs::remove_all(dir);
 }
 
-TEST(Dataset, OpensSharedPlainLayout) {
+TEST(commonDataset, OpensSharedPlainLayout) {
   const std::string dir = kShared + "/kitti_raw_0926_seq";
   if (!fs::exists(dir)) GTEST_SKIP() << "../shared/data is absent";
   const Dataset ds = openDataset(dir);
@@ -110,7 +110,7 @@ TEST(Dataset, OpensSharedPlainLayout) {
   expectKitti0926(ds.frames[3].camera);
 }
 
-TEST(Dataset, MissingFolderAndCalibrationAreErrors) {
+TEST(commonDataset, MissingFolderAndCalibrationAreErrors) {
   EXPECT_THROW(openDataset("/nonexistent/nerv"), DatasetError);
   const fs::path dir = tempDir("nocalib");
   fs::create_directories(dir / "left");

@@ -15,7 +15,7 @@ std::string errorOf(const std::function<void()>& f) {
 }
 }  // namespace
 
-TEST(Config, DefaultsStayWhenKeysAreAbsent) {
+TEST(commonConfig, DefaultsStayWhenKeysAreAbsent) {
   ConfigSection c(YAML::Load("{}"), "stixel");
   int width = 5;
   double h = 2.5;
@@ -29,7 +29,7 @@ TEST(Config, DefaultsStayWhenKeysAreAbsent) {
   EXPECT_EQ(algo, "sgbm");
 }
 
-TEST(Config, ValuesAreReadAndChecked) {
+TEST(commonConfig, ValuesAreReadAndChecked) {
   ConfigSection c(YAML::Load("{a: 7, b: 0.5, s: bm, f: true}"), "x");
   int a = 0;
   double b = 0;
@@ -46,14 +46,14 @@ TEST(Config, ValuesAreReadAndChecked) {
   EXPECT_TRUE(f);
 }
 
-TEST(Config, UnknownKeyIsNamed) {
+TEST(commonConfig, UnknownKeyIsNamed) {
   ConfigSection c(YAML::Load("{column_width_px: 5, colum_width: 3}"), "stixel");
   int w = 0;
   c.get("column_width_px", w, 1, 64);
   EXPECT_EQ(errorOf([&] { c.finish(); }), "unknown config key 'stixel.colum_width'");
 }
 
-TEST(Config, BadValuesAreNamed) {
+TEST(commonConfig, BadValuesAreNamed) {
   auto err = [](const char* yaml, auto apply) {
     return errorOf([&] {
       ConfigSection c(YAML::Load(yaml), "s");
@@ -68,7 +68,7 @@ TEST(Config, BadValuesAreNamed) {
   EXPECT_NE(err("{m: [1, 2]}", [](ConfigSection& c) { int m; c.get("m", m); }).find("single value"), std::string::npos);
 }
 
-TEST(Config, NestedSectionsCheckTheirOwnKeys) {
+TEST(commonConfig, NestedSectionsCheckTheirOwnKeys) {
   ConfigSection root(YAML::Load("{shard: {index: 1, count: 2, extra: 1}}"), "");
   ConfigSection shard = root.section("shard");
   int index = 0, count = 1;
@@ -78,6 +78,6 @@ TEST(Config, NestedSectionsCheckTheirOwnKeys) {
   EXPECT_EQ(errorOf([&] { shard.finish(); }), "unknown config key 'shard.extra'");
 }
 
-TEST(Config, MissingFileIsAnError) {
+TEST(commonConfig, MissingFileIsAnError) {
   EXPECT_NE(errorOf([] { loadConfigFile("/nonexistent/pipeline.yaml"); }).find("cannot be read"), std::string::npos);
 }

@@ -43,12 +43,12 @@ disparity_t goodDisparity() {
 
 }  // namespace
 
-TEST(MessageCheck, GoodMessagesPass) {
+TEST(commonMessageCheck, GoodMessagesPass) {
   EXPECT_FALSE(checkStereoFrame(goodFrame(), Limits{}));
   EXPECT_FALSE(checkDisparity(goodDisparity(), Limits{}));
 }
 
-TEST(MessageCheck, SizeFieldMustMatchData) {
+TEST(commonMessageCheck, SizeFieldMustMatchData) {
   stereo_frame_t f = goodFrame();
   f.left.size += 1;
   Problem p = checkStereoFrame(f, Limits{});
@@ -59,14 +59,14 @@ TEST(MessageCheck, SizeFieldMustMatchData) {
   EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_size");
 }
 
-TEST(MessageCheck, DimensionsWithinLimits) {
+TEST(commonMessageCheck, DimensionsWithinLimits) {
   stereo_frame_t f = goodFrame();
   Limits small;
   small.max_width = 32;
   EXPECT_EQ(checkStereoFrame(f, small).counter, "bad_size");
 }
 
-TEST(MessageCheck, LeftRightAndCalibrationSizesMustAgree) {
+TEST(commonMessageCheck, LeftRightAndCalibrationSizesMustAgree) {
   stereo_frame_t f = goodFrame();
   cv::Mat other(30, 64, CV_8UC1, cv::Scalar(1));
   f.right = encodeImage(other, "gray8");
@@ -76,7 +76,7 @@ TEST(MessageCheck, LeftRightAndCalibrationSizesMustAgree) {
   EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "size_mismatch");
 }
 
-TEST(MessageCheck, NonFiniteCalibrationIsRejected) {
+TEST(commonMessageCheck, NonFiniteCalibrationIsRejected) {
   stereo_frame_t f = goodFrame();
   f.calib.fx = NAN;
   EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "bad_calibration");
@@ -88,7 +88,7 @@ TEST(MessageCheck, NonFiniteCalibrationIsRejected) {
   EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_calibration");
 }
 
-TEST(MessageCheck, UnknownEncodingsAreRejected) {
+TEST(commonMessageCheck, UnknownEncodingsAreRejected) {
   stereo_frame_t f = goodFrame();
   f.left.encoding = "webp";
   EXPECT_EQ(checkStereoFrame(f, Limits{}).counter, "bad_encoding");
@@ -97,7 +97,7 @@ TEST(MessageCheck, UnknownEncodingsAreRejected) {
   EXPECT_EQ(checkDisparity(d, Limits{}).counter, "bad_encoding");
 }
 
-TEST(MessageCheck, StixelsCountsAndNumbers) {
+TEST(commonMessageCheck, StixelsCountsAndNumbers) {
   stixels_t s;
   s.ground = toMessage(GroundModel{});
   s.num_stixels = 1;  // but no stixels
@@ -118,7 +118,7 @@ TEST(MessageCheck, StixelsCountsAndNumbers) {
   EXPECT_EQ(checkSurfaceNormals(n).counter, "bad_value");
 }
 
-TEST(MessageConvert, ImagesRoundTripInEveryLosslessEncoding) {
+TEST(commonMessageConvert, ImagesRoundTripInEveryLosslessEncoding) {
   cv::Mat gray(20, 30, CV_8UC1), bgr(20, 30, CV_8UC3), out;
   cv::randu(gray, 0, 255);
   cv::randu(bgr, 0, 255);
@@ -135,7 +135,7 @@ TEST(MessageConvert, ImagesRoundTripInEveryLosslessEncoding) {
   EXPECT_NE(decodeImage(broken, out), "");
 }
 
-TEST(MessageConvert, DisparityFixedPointRoundTrip) {
+TEST(commonMessageConvert, DisparityFixedPointRoundTrip) {
   cv::Mat disp(8, 9, CV_32F);
   cv::randu(disp, 0.0, 200.0);
   disp.at<float>(0, 0) = 0;

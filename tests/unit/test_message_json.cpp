@@ -6,7 +6,7 @@
 
 using namespace nerv;
 
-TEST(JsonWriter, EscapesAndBase64) {
+TEST(toolsJsonWriter, EscapesAndBase64) {
   JsonWriter j;
   j.beginObject();
   j.field("s", std::string("a\"b\\c\n"));
@@ -16,7 +16,7 @@ TEST(JsonWriter, EscapesAndBase64) {
   EXPECT_EQ(j.str(), R"({"s":"a\"b\\c\n","n":null,"b":"TWFuTWE="})");
 }
 
-TEST(MessageJson, DecodesByFingerprintWithFieldNames) {
+TEST(toolsMessageJson, DecodesByFingerprintWithFieldNames) {
   extrinsics_t e{};
   e.header.seq = 42;
   e.header.utime = 123456789;

@@ -117,7 +117,7 @@ TEST_P(qualityPresets, StixelsFindRoadAndBoxForThatCamera) {
   EXPECT_NEAR(r.hypotheses[0].width_m, 2.0, 0.3) << preset.file;
 }
 
-INSTANTIATE_TEST_SUITE_P(cameras, qualityPresets, ::testing::ValuesIn(kPresets),
+INSTANTIATE_TEST_SUITE_P(qualityCameras, qualityPresets, ::testing::ValuesIn(kPresets),
                          [](const ::testing::TestParamInfo<Preset>& i) {
                            std::string n = i.param.file;
                            return n.substr(0, n.find('.'));

@@ -37,7 +37,7 @@ double angleDeg(const cv::Vec3f& a, const cv::Vec3f& b) {
 
 }  // namespace
 
-TEST(RenderNeedles, GroundPlaneNormalsAreTheTrueNormalAndClassedGround) {
+TEST(renderNeedles, GroundPlaneNormalsAreTheTrueNormalAndClassedGround) {
   const StereoCamera c = camera();
   const double pitch = 3.0;
   const cv::Mat d = groundDisparity(c, 1.5, pitch);
@@ -53,7 +53,7 @@ TEST(RenderNeedles, GroundPlaneNormalsAreTheTrueNormalAndClassedGround) {
   }
 }
 
-TEST(RenderNeedles, WallsAreObjectOrError) {
+TEST(renderNeedles, WallsAreObjectOrError) {
   const StereoCamera c = camera();
   // A side wall x = -2 m (plane turned 90 deg from the line of sight): d = -(u - cx) B / 2 for u < cx.
   cv::Mat side(c.height, c.width, CV_32F, cv::Scalar(0));
@@ -77,7 +77,7 @@ TEST(RenderNeedles, WallsAreObjectOrError) {
   }
 }
 
-TEST(RenderNeedles, DepthJumpsAndInvalidPixelsGiveNoNeedle) {
+TEST(renderNeedles, DepthJumpsAndInvalidPixelsGiveNoNeedle) {
   const StereoCamera c = camera();
   cv::Mat d(c.height, c.width, CV_32F, cv::Scalar(10));
   d.colRange(200, 400).setTo(40);           // a jump at u = 200
@@ -88,7 +88,7 @@ TEST(RenderNeedles, DepthJumpsAndInvalidPixelsGiveNoNeedle) {
   }
 }
 
-TEST(RenderNeedles, PitchDistributionPeaksAtTheTruePitch) {
+TEST(renderNeedles, PitchDistributionPeaksAtTheTruePitch) {
   const StereoCamera c = camera();
   for (double pitch : {-1.0, 0.0, 2.5}) {
     const cv::Mat d = groundDisparity(c, 1.5, pitch);

@@ -160,7 +160,7 @@ void expectBoxDrawn(const cv::Mat& grid, const detection_t& d) {
 
 }  // namespace
 
-TEST(RenderOverlay, DrawsBoxesOfTheLogAtTheirPixels) {
+TEST(renderOverlay, DrawsBoxesOfTheLogAtTheirPixels) {
   const fs::path dir = tempDir("boxes");
   const std::string log_path = (dir / "test.lcmlog").string();
   {
@@ -189,7 +189,7 @@ TEST(RenderOverlay, DrawsBoxesOfTheLogAtTheirPixels) {
   fs::remove_all(dir);
 }
 
-TEST(RenderOverlay, BrokenMessagesAreSkippedAndCounted) {
+TEST(renderOverlay, BrokenMessagesAreSkippedAndCounted) {
   const fs::path dir = tempDir("broken");
   const std::string log_path = (dir / "test.lcmlog").string();
   {
@@ -213,7 +213,7 @@ TEST(RenderOverlay, BrokenMessagesAreSkippedAndCounted) {
   fs::remove_all(dir);
 }
 
-TEST(RenderOverlay, LogWithoutStereoFramesRendersNothing) {
+TEST(renderOverlay, LogWithoutStereoFramesRendersNothing) {
   const fs::path dir = tempDir("nostereo");
   const std::string log_path = (dir / "test.lcmlog").string();
   {
@@ -230,13 +230,13 @@ TEST(RenderOverlay, LogWithoutStereoFramesRendersNothing) {
   fs::remove_all(dir);
 }
 
-TEST(RenderOverlay, MissingLogThrows) {
+TEST(renderOverlay, MissingLogThrows) {
   viz::RenderOptions o;
   o.out_dir = (fs::temp_directory_path() / "nerv_render_test_missing").string();
   EXPECT_THROW(viz::renderLog("/nonexistent/nerv.lcmlog", o), std::runtime_error);
 }
 
-TEST(RenderOverlay, FrameRangeSelectsSeqs) {
+TEST(renderOverlay, FrameRangeSelectsSeqs) {
   const fs::path dir = tempDir("range");
   const std::string log_path = (dir / "test.lcmlog").string();
   {
@@ -254,7 +254,7 @@ TEST(RenderOverlay, FrameRangeSelectsSeqs) {
   fs::remove_all(dir);
 }
 
-TEST(RenderOverlay, RemovalCodes) {
+TEST(renderOverlay, RemovalCodes) {
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "ground", "ground normals 78%")), "GND 78%");
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "error", "error normals 61.5% facing")), "ERR 61.5%");
   EXPECT_EQ(viz::removalCode(box(1, 0, 0, 1, 1, false, "unvalidated", "unvalidated: no normals")), "UNV none");
@@ -267,7 +267,7 @@ TEST(RenderOverlay, RemovalCodes) {
 
 // An AVI the writer made reads back: RIFF/AVI header, frame count, and every
 // indexed chunk a JPEG of the frame size.
-TEST(RenderOverlay, MjpegAviReadsBack) {
+TEST(renderOverlay, MjpegAviReadsBack) {
   const fs::path dir = tempDir("avi");
   const std::string path = (dir / "v.avi").string();
   {
@@ -315,7 +315,7 @@ TEST(RenderOverlay, MjpegAviReadsBack) {
 // With NERV_RENDER_LOG and NERV_RENDER_DIR (PNGs nerv_render made from that
 // log), every kept box that no other box comes near is drawn in green at the
 // middle of its left and right edges.
-TEST(RenderOverlay, PipelineLogBoxesAtTheirPixels) {
+TEST(renderOverlay, PipelineLogBoxesAtTheirPixels) {
   const char* log_path = std::getenv("NERV_RENDER_LOG");
   const char* png_dir = std::getenv("NERV_RENDER_DIR");
   if (!log_path || !png_dir) GTEST_SKIP() << "set by tests/integration/test_render_report.sh";

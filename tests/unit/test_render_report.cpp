@@ -16,7 +16,7 @@ int count(const std::string& s, const std::string& what) {
 }
 }  // namespace
 
-TEST(RenderReport, Base64KnownVectors) {
+TEST(renderReport, Base64KnownVectors) {
   auto b = [](const std::string& s) { return base64Encode(std::vector<uint8_t>(s.begin(), s.end())); };
   EXPECT_EQ(b(""), "");
   EXPECT_EQ(b("M"), "TQ==");
@@ -26,7 +26,7 @@ TEST(RenderReport, Base64KnownVectors) {
   EXPECT_EQ(base64Encode({0xff, 0xfe, 0x00}), "//4A");
 }
 
-TEST(RenderReport, NiceTicks) {
+TEST(renderReport, NiceTicks) {
   EXPECT_EQ(niceTicks(0, 10, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
   const auto t = niceTicks(-0.13, 0.42, 5);
   ASSERT_FALSE(t.empty());
@@ -38,9 +38,9 @@ TEST(RenderReport, NiceTicks) {
   EXPECT_TRUE(niceTicks(0, NAN, 5).empty());
 }
 
-TEST(RenderReport, XmlEscape) { EXPECT_EQ(xmlEscape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;"); }
+TEST(renderReport, XmlEscape) { EXPECT_EQ(xmlEscape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;"); }
 
-TEST(RenderReport, PlotHasAxesLegendSeriesAndMarkers) {
+TEST(renderReport, PlotHasAxesLegendSeriesAndMarkers) {
   SvgPlot p("Pitch <test>", "frame seq", "pitch [deg]");
   SvgSeries s;
   s.name = "filtered";
@@ -73,7 +73,7 @@ TEST(RenderReport, PlotHasAxesLegendSeriesAndMarkers) {
   EXPECT_NE(id(svg), id(other));
 }
 
-TEST(RenderReport, EmptyPlotSaysNoData) {
+TEST(renderReport, EmptyPlotSaysNoData) {
   SvgPlot p("empty", "x", "y");
   SvgSeries s;
   s.name = "nothing";
@@ -85,7 +85,7 @@ TEST(RenderReport, EmptyPlotSaysNoData) {
   EXPECT_EQ(svg.find("nan"), std::string::npos);
 }
 
-TEST(RenderReport, PageIsSelfContained) {
+TEST(renderReport, PageIsSelfContained) {
   HtmlReport page("run <1>");
   page.heading("Summary");
   page.paragraph("a & b");

@@ -7,7 +7,7 @@
 
 using nerv::SeqJoin;
 
-TEST(SeqJoin, MatchesBySeqInAnyOrder) {
+TEST(commonSeqJoin, MatchesBySeqInAnyOrder) {
   std::vector<std::string> matched;
   int expired = 0;
   SeqJoin<int, std::string> join(
@@ -22,7 +22,7 @@ TEST(SeqJoin, MatchesBySeqInAnyOrder) {
   EXPECT_EQ(join.pending(), 0u);
 }
 
-TEST(SeqJoin, BoundedBufferHandsOutTheOldest) {
+TEST(commonSeqJoin, BoundedBufferHandsOutTheOldest) {
   std::vector<long> expired_a;
   SeqJoin<long, long> join(
       2, 1000000, [](const long&, const long&) {},
@@ -36,7 +36,7 @@ TEST(SeqJoin, BoundedBufferHandsOutTheOldest) {
   EXPECT_EQ(join.pending(), 2u);
 }
 
-TEST(SeqJoin, ExpiresByAge) {
+TEST(commonSeqJoin, ExpiresByAge) {
   int expired = 0;
   SeqJoin<int, int> join(10, 500, [](const int&, const int&) {}, [&](auto&, auto&) { ++expired; });
   join.pushB(7, 1, 1000);

@@ -28,7 +28,7 @@ BoundarySnapParams band(int b) {
 
 }  // namespace
 
-TEST(StereoBoundarySnap, CutsFattenedPixelsBackToTheIntensityEdge) {
+TEST(stereoBoundarySnap, CutsFattenedPixelsBackToTheIntensityEdge) {
   // Object at columns 5..7 (gray 40) fattened to 3..9; background 10 px farther.
   Row r({120, 121, 119, 122, 120, 40, 41, 40, 121, 120, 122, 119},
         {10, 10, 0, 20, 20, 20, 20, 20, 20, 20, 10, 10});
@@ -39,7 +39,7 @@ TEST(StereoBoundarySnap, CutsFattenedPixelsBackToTheIntensityEdge) {
   EXPECT_EQ(r.d(0), 10.0f);  // background untouched
 }
 
-TEST(StereoBoundarySnap, CutsASmoothedStepDownToTheEdge) {
+TEST(stereoBoundarySnap, CutsASmoothedStepDownToTheEdge) {
   // Object at 6..9 (gray 40) whose right boundary the matcher smoothed into a
   // ramp 20 -> 10 over columns 10..12; background flat from 13.
   Row r({120, 121, 119, 122, 120, 121, 40, 41, 40, 42, 120, 121, 119, 122, 120, 121},
@@ -50,7 +50,7 @@ TEST(StereoBoundarySnap, CutsASmoothedStepDownToTheEdge) {
   for (int x : {13, 14, 15}) EXPECT_EQ(r.d(x), 10.0f) << x;
 }
 
-TEST(StereoBoundarySnap, LeavesASlantedSurfaceAlone) {
+TEST(stereoBoundarySnap, LeavesASlantedSurfaceAlone) {
   // Constant slope 0.5 px per column (a wall at a grazing angle) with texture.
   std::vector<int> g;
   std::vector<float> d;
@@ -59,13 +59,13 @@ TEST(StereoBoundarySnap, LeavesASlantedSurfaceAlone) {
   EXPECT_EQ(snapDisparityBoundaries(r.gray, r.disp, r.conf, band(4)), 0);
 }
 
-TEST(StereoBoundarySnap, LeavesBoundariesWithoutAnIntensityEdge) {
+TEST(stereoBoundarySnap, LeavesBoundariesWithoutAnIntensityEdge) {
   Row r({120, 121, 119, 122, 120, 121, 119, 120, 121, 120, 122, 119},
         {10, 10, 10, 20, 20, 20, 20, 20, 20, 20, 10, 10});
   EXPECT_EQ(snapDisparityBoundaries(r.gray, r.disp, r.conf, band(4)), 0);
 }
 
-TEST(StereoBoundarySnap, AHoleInsideAnObjectIsNotABoundary) {
+TEST(stereoBoundarySnap, AHoleInsideAnObjectIsNotABoundary) {
   // Invalid run inside the object, object continues beyond it at the same depth.
   Row r({120, 40, 60, 40, 60, 40, 60, 40, 60, 40, 60, 120},
         {10, 20, 20, 20, 0, 0, 0, 20, 20, 20, 20, 10});
@@ -75,7 +75,7 @@ TEST(StereoBoundarySnap, AHoleInsideAnObjectIsNotABoundary) {
   EXPECT_LE(removed, 1);  // only the right boundary at column 10 may move
 }
 
-TEST(StereoBoundarySnap, ZeroBandAndEmptyConfidenceAreAccepted) {
+TEST(stereoBoundarySnap, ZeroBandAndEmptyConfidenceAreAccepted) {
   Row r({120, 40, 40, 120}, {10, 20, 20, 10});
   cv::Mat no_conf;
   EXPECT_EQ(snapDisparityBoundaries(r.gray, r.disp, no_conf, band(0)), 0);
@@ -84,7 +84,7 @@ TEST(StereoBoundarySnap, ZeroBandAndEmptyConfidenceAreAccepted) {
 // A dark textured post 10 px wide at disparity 24 in front of a textured wall
 // at disparity 8: nerv_sgm's census 9x7 widens it; the correction restores
 // its edges.
-TEST(StereoBoundarySnap, RenderedPostKeepsItsWidthThroughNervSgm) {
+TEST(stereoBoundarySnap, RenderedPostKeepsItsWidthThroughNervSgm) {
   const int rows = 120, cols = 320, x0 = 150, x1 = 160, d_post = 24, d_wall = 8;
   cv::Mat wall(rows, cols + 64, CV_8U), post(rows, cols + 64, CV_8U);
   cv::RNG rng(7);

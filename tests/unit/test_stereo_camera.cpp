@@ -17,7 +17,7 @@ StereoCamera kitti() {
 }
 }  // namespace
 
-TEST(StereoCamera, DisparityTo3dFollowsTheTriangulationFormulas) {
+TEST(commonStereoCamera, DisparityTo3dFollowsTheTriangulationFormulas) {
   const StereoCamera c = kitti();
   const double u = 800, v = 250, d = 20;
   const Point3 p = c.toPoint(u, v, d);
@@ -26,7 +26,7 @@ TEST(StereoCamera, DisparityTo3dFollowsTheTriangulationFormulas) {
   EXPECT_DOUBLE_EQ(p.y, (v - c.cy) * c.baseline_m / d);
 }
 
-TEST(StereoCamera, ProjectInvertsToPoint) {
+TEST(commonStereoCamera, ProjectInvertsToPoint) {
   const StereoCamera c = kitti();
   for (double d : {1.0, 7.5, 64.0}) {
     const Point3 p = c.toPoint(123.25, 301.5, d);
@@ -40,7 +40,7 @@ TEST(StereoCamera, ProjectInvertsToPoint) {
   EXPECT_FALSE(c.project({0, 0, -1}, u, v));
 }
 
-TEST(StereoCamera, ProblemNamesBadValues) {
+TEST(commonStereoCamera, ProblemNamesBadValues) {
   EXPECT_EQ(kitti().problem(), "");
   StereoCamera c = kitti();
   c.baseline_m = 0;

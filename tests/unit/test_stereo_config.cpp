@@ -46,13 +46,13 @@ stereo_frame_t frame(int w, int h) {
 
 }  // namespace
 
-TEST(StereoConfig, DefaultsAreValid) {
+TEST(stereoConfig, DefaultsAreValid) {
   EXPECT_EQ(configError("{}"), "");
   EXPECT_EQ(configError("{algorithm: sgbm_wls, num_disparities: 64, downscale: 2}"), "");
   EXPECT_NO_THROW(stereo::StereoMatcher::create(stereo::Params{}));
 }
 
-TEST(StereoConfig, BadValuesNameTheKey) {
+TEST(stereoConfig, BadValuesNameTheKey) {
   EXPECT_NE(configError("{num_disparities: 0}").find("stereo_matcher.num_disparities"), std::string::npos);
   EXPECT_NE(configError("{num_disparities: -32}").find("stereo_matcher.num_disparities"), std::string::npos);
   EXPECT_NE(configError("{num_disparities: 40}").find("stereo_matcher.num_disparities"), std::string::npos);
@@ -69,7 +69,7 @@ TEST(StereoConfig, BadValuesNameTheKey) {
   EXPECT_THROW(stereo::StereoMatcher::create(p), ConfigError);
 }
 
-TEST(StereoConfig, BadFramesAreRejectedWithACounter) {
+TEST(stereoConfig, BadFramesAreRejectedWithACounter) {
   Limits limits;
   limits.max_width = 640;
   limits.max_height = 480;

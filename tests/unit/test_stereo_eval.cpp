@@ -10,7 +10,7 @@ namespace {
 cv::Mat row(std::initializer_list<float> v) { return cv::Mat(std::vector<float>(v), true).reshape(1, 1); }
 }  // namespace
 
-TEST(StereoEval, BackgroundInterpolationPerRow) {
+TEST(stereoEval, BackgroundInterpolationPerRow) {
   // interior run: min of its neighbours; borders: nearest valid value
   cv::Mat d = row({0, 5, 0, 0, 3, 0, 8, 0});
   interpolateBackground(d);
@@ -18,7 +18,7 @@ TEST(StereoEval, BackgroundInterpolationPerRow) {
   EXPECT_EQ(cv::countNonZero(d != expected), 0) << d;
 }
 
-TEST(StereoEval, BackgroundInterpolationFillsEmptyRowsFromColumns) {
+TEST(stereoEval, BackgroundInterpolationFillsEmptyRowsFromColumns) {
   cv::Mat d = (cv::Mat_<float>(4, 3) << 0, 0, 0,
                                         2, 0, 6,
                                         0, 0, 0,
@@ -33,7 +33,7 @@ TEST(StereoEval, BackgroundInterpolationFillsEmptyRowsFromColumns) {
   EXPECT_EQ(cv::countNonZero(d != expected), 0) << d;
 }
 
-TEST(StereoEval, D1NeedsBothThreeBixelsAndFivePercent) {
+TEST(stereoEval, D1NeedsBothThreeBixelsAndFivePercent) {
   const cv::Mat gt = row({100, 100, 10, 10, 50, 0});
   //                estimate:  104 ok (4 % < 5 %), 106 bad, 13 ok (3 px), 13.5 bad, invalid, no gt
   const cv::Mat est = row({104, 106, 13, 13.5, 0, 7});
@@ -44,7 +44,7 @@ TEST(StereoEval, D1NeedsBothThreeBixelsAndFivePercent) {
   EXPECT_DOUBLE_EQ(s.density, 4.0 / 5.0);
 }
 
-TEST(StereoEval, BadTwoPixelsForMiddlebury) {
+TEST(stereoEval, BadTwoPixelsForMiddlebury) {
   const cv::Mat gt = row({20, 20, 20, 0, 40});
   const cv::Mat est = row({22, 22.5, 0, 9, 41});
   const DisparityScore s = scoreBad(est, gt, 2.0);
@@ -54,14 +54,14 @@ TEST(StereoEval, BadTwoPixelsForMiddlebury) {
   EXPECT_DOUBLE_EQ(s.density, 3.0 / 4.0);
 }
 
-TEST(StereoEval, EmptyEstimateIsAllWrong) {
+TEST(stereoEval, EmptyEstimateIsAllWrong) {
   const cv::Mat gt = row({5, 6, 7});
   const DisparityScore s = scoreD1(cv::Mat::zeros(1, 3, CV_32F), gt);
   EXPECT_DOUBLE_EQ(s.error_rate, 1.0);
   EXPECT_DOUBLE_EQ(s.density, 0.0);
 }
 
-TEST(StereoEval, KittiFrameIfPresent) {
+TEST(stereoEval, KittiFrameIfPresent) {
   const std::string dir = std::string(NERV_SHARED_DATA) + "/kitti2015_000005";
   const auto frames = findEvalFrames(dir);
   if (frames.empty()) GTEST_SKIP() << dir << " not present";

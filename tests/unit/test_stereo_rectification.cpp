@@ -46,7 +46,7 @@ cv::Mat renderRaw(const cv::Mat& rectified, const cv::Matx33d& K, const std::arr
 
 }  // namespace
 
-TEST(StereoRectification, UnrectifiedRenderGivesTheRectifiedDisparity) {
+TEST(stereoRectification, UnrectifiedRenderGivesTheRectifiedDisparity) {
   const RawStereoCalibration raw = testRig();
   const Rectification rect = computeRectification(raw);
   EXPECT_NEAR(rect.camera.baseline_m, std::sqrt(0.25 * 0.25 + 0.004 * 0.004 + 0.003 * 0.003), 1e-6);
@@ -100,7 +100,7 @@ TEST(StereoRectification, UnrectifiedRenderGivesTheRectifiedDisparity) {
   EXPECT_LT(raw_agree, 0.8 * both);
 }
 
-TEST(StereoRectification, CacheIsKeyedByCalibration) {
+TEST(stereoRectification, CacheIsKeyedByCalibration) {
   Rectifier rectifier(2);
   RawStereoCalibration a = testRig(), b = testRig();
   b.T[0] = -0.3;
@@ -114,7 +114,7 @@ TEST(StereoRectification, CacheIsKeyedByCalibration) {
   EXPECT_THROW(rectifier.get(b), std::invalid_argument);
 }
 
-TEST(StereoRectification, KittiRawCalibrationComposesTheRelativePose) {
+TEST(stereoRectification, KittiRawCalibrationComposesTheRelativePose) {
   const std::string path = testing::TempDir() + "/nerv_calib_cam_to_cam.txt";
   {
     std::ofstream f(path);
@@ -151,7 +151,7 @@ TEST(StereoRectification, KittiRawCalibrationComposesTheRelativePose) {
   EXPECT_THROW(loadKittiRawStereoCalibration(path), CalibrationError);
 }
 
-TEST(StereoRectification, OpenCvStereoCalibFile) {
+TEST(stereoRectification, OpenCvStereoCalibFile) {
   const RawStereoCalibration rig = testRig();
   for (const char* ext : {".yml", ".xml"}) {
     const std::string path = testing::TempDir() + "/nerv_stereo_calib" + ext;

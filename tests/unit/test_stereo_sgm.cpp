@@ -171,7 +171,7 @@ OcclusionScene occlusionScene() {
 
 }  // namespace
 
-TEST(StereoSgm, CensusMatchesReference) {
+TEST(stereoSgm, CensusMatchesReference) {
   const cv::Mat img = texture(30, 41, 1, 0.0);
   cv::Mat census;
   censusTransform(img, 9, 7, census);
@@ -180,7 +180,7 @@ TEST(StereoSgm, CensusMatchesReference) {
     for (int x = 0; x < img.cols; ++x) ASSERT_EQ(census.ptr<uint32_t>(y)[x], ref[y * img.cols + x]) << x << "," << y;
 }
 
-TEST(StereoSgm, MatchesReferenceIntegerDisparities) {
+TEST(stereoSgm, MatchesReferenceIntegerDisparities) {
   // D = 32 runs the AVX2 path (where built), D = 48 the scalar fallback; min_disparity shifts.
   for (const auto& [D, min_d] : std::vector<std::pair<int, int>>{{32, 0}, {48, 3}, {64, 5}}) {
     const cv::Mat right = texture(40, 96, 2, 1.2);
@@ -196,7 +196,7 @@ TEST(StereoSgm, MatchesReferenceIntegerDisparities) {
   }
 }
 
-TEST(StereoSgm, PathStepSimdEqualsScalar) {
+TEST(stereoSgm, PathStepSimdEqualsScalar) {
   if (!pathSimdAvailable()) GTEST_SKIP() << "built without AVX2";
   std::mt19937 rng(7);
   const int D = 128;
@@ -215,7 +215,7 @@ TEST(StereoSgm, PathStepSimdEqualsScalar) {
   }
 }
 
-TEST(StereoSgm, SimdMatcherEqualsScalarMatcher) {
+TEST(stereoSgm, SimdMatcherEqualsScalarMatcher) {
   const OcclusionScene s = occlusionScene();
   Params p;
   p.num_disparities = 64;
@@ -227,7 +227,7 @@ TEST(StereoSgm, SimdMatcherEqualsScalarMatcher) {
   EXPECT_GT(cv::countNonZero(d_simd), d_simd.total() / 2);
 }
 
-TEST(StereoSgm, ThreadsDoNotChangeTheResult) {
+TEST(stereoSgm, ThreadsDoNotChangeTheResult) {
   const OcclusionScene s = occlusionScene();
   Params p;
   p.num_disparities = 64;
@@ -239,7 +239,7 @@ TEST(StereoSgm, ThreadsDoNotChangeTheResult) {
   EXPECT_EQ(cv::countNonZero(one != two), 0);
 }
 
-TEST(StereoSgm, ShiftedTextureRecoversConstantDisparity) {
+TEST(stereoSgm, ShiftedTextureRecoversConstantDisparity) {
   // Integer shifts come back exact; fractional ones within 0.25 px at the median
   // (the equiangular fit on the aggregated cost keeps a bias of up to ~0.2 px
   // toward integers, see docs/stereo.md).
@@ -277,7 +277,7 @@ TEST(StereoSgm, ShiftedTextureRecoversConstantDisparity) {
   }
 }
 
-TEST(StereoSgm, LeftRightCheckInvalidatesOccludedStrip) {
+TEST(stereoSgm, LeftRightCheckInvalidatesOccludedStrip) {
   const OcclusionScene s = occlusionScene();
   Params p;
   p.num_disparities = 32;
@@ -301,7 +301,7 @@ TEST(StereoSgm, LeftRightCheckInvalidatesOccludedStrip) {
   EXPECT_GT(cv::countNonZero(cv::abs(checked(bg) - s.bg) <= 1.0), 0.9 * bg.area());
 }
 
-TEST(StereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
+TEST(stereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
   const OcclusionScene s = occlusionScene();
   for (const char* name : {"nerv_sgm", "sgbm", "sgbm_full", "sgbm_wls", "bm"}) {
     for (int downscale : {1, 2}) {
@@ -322,7 +322,7 @@ TEST(StereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
   }
 }
 
-TEST(StereoSgm, FusedWinnersEqualSeparateSteps) {
+TEST(stereoSgm, FusedWinnersEqualSeparateSteps) {
   // random path costs with many ties; every D the fused loop takes, min_disparity > 0
   std::mt19937 rng(3);
   for (int D : {32, 96, 128}) {
