@@ -199,7 +199,8 @@ TEST(stereoSgm, MatchesReferenceIntegerDisparities) {
 TEST(stereoSgm, PathStepSimdEqualsScalar) {
   if (!pathSimdAvailable()) GTEST_SKIP() << "built without AVX2";
   std::mt19937 rng(7);
-  const int D = 128;
+  // Register-multiple lengths, with and without a 64-byte multiple.
+  for (const int D : {64, 96, 128}) {
   std::vector<uint8_t> cost(D), prev(D), a(D), b(D);
   for (int trial = 0; trial < 2000; ++trial) {
     const PathPenalties pen{static_cast<int>(rng() % 20), 0};
@@ -210,8 +211,9 @@ TEST(stereoSgm, PathStepSimdEqualsScalar) {
     const uint8_t prev_min = *std::min_element(prev.begin(), prev.end());
     const uint8_t ma = pathStepScalar(cost.data(), prev.data(), prev_min, a.data(), D, q);
     const uint8_t mb = pathStepSimd(cost.data(), prev.data(), prev_min, b.data(), D, q);
-    ASSERT_EQ(a, b);
-    ASSERT_EQ(ma, mb);
+    ASSERT_EQ(a, b) << "D " << D;
+    ASSERT_EQ(ma, mb) << "D " << D;
+  }
   }
 }
 
