@@ -17,7 +17,6 @@
 #include "super_snv.hpp"
 
 namespace nerv::snv {
-namespace {
 
 IntegralNormalParams normalParams(const Params& p) {
   IntegralNormalParams n;
@@ -40,6 +39,8 @@ GroundSampleParams groundParams(const Params& p) {
   g.lower_margin_px = p.ground_lower_margin_px;
   return g;
 }
+
+namespace {
 
 PoseFilterParams filterParams(const Params& p) {
   PoseFilterParams f;

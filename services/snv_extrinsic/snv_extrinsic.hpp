@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "ground_samples.hpp"
 #include "integral_normals.hpp"
 #include "perception_types.hpp"
 #include "pose_filter.hpp"
@@ -77,6 +78,10 @@ struct Params {
 };
 
 Params readParams(ConfigSection& section);
+// The integral-normal part of the parameters (what process() prepares its field with).
+IntegralNormalParams normalParams(const Params& params);
+// The ground-sample part of the parameters.
+GroundSampleParams groundParams(const Params& params);
 
 struct SnvResult {
   PoseEstimate pose;              // instant values and the temporally filtered ones
