@@ -286,8 +286,10 @@ int main(int argc, char** argv) {
       sampleEntropyBits(res, params.residual_entropy_bin);
     });
     // Lowest-surface selection before the planes (plane_lowest_surface: true): its
-    // passes, each a selection and a plane fit on the kept samples. Part of the
-    // per-frame pose cost, reported apart from the target figure.
+    // passes, each a selection and a plane fit on the kept samples (process()
+    // starts the roll plane from the last one, so the "plane" column above then
+    // converges at once). Part of the per-frame pose cost, reported apart from
+    // the target figure.
     const double surface = timePerFrame(frames, repeats, [&](const Frame& f) {
       const size_t fi = &f - frames.data();
       const auto& g = ground[fi];

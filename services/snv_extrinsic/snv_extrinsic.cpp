@@ -217,6 +217,7 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       const DisparityPlane start = planeFromNormal(instant_normal, pose.instant_height_m, cam);
       PlaneFitParams fit;
       fit.tukey_k = params_.plane_tukey_k;
+      DisparityPlane road_start = start;
       if (params_.plane_lowest_surface) {
         // Only the samples on the lowest surface (lowest_surface.hpp): raised
         // sidewalks parallel to the road otherwise capture the plane. The
@@ -239,15 +240,18 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
           if (!next.valid) break;
           ref = next;
         }
+        road_start = ref;
         road_points.clear();
         for (size_t i = 0; i < samples.size(); ++i)
           if (on_road[i]) road_points.push_back(samples[i].p);
       }
-      std::vector<PlanePoint> road_pts;
+      std::vector<PlanePoint> road_pts;  // the samples on the road surface
       road_pts.reserve(pts.size());
       for (size_t i = 0; i < pts.size(); ++i)
         if (on_road[i]) road_pts.push_back(pts[i]);
-      const DisparityPlane plane = fitDisparityPlane(road_pts, cam, fit, &start);
+      // Started from the last selection's plane (on the same samples it converges
+      // at once), else from the super-SNV plane.
+      const DisparityPlane plane = fitDisparityPlane(road_pts, cam, fit, &road_start);
       if (plane.valid) {
         pose.instant_roll_deg = normalRollDeg(planeNormal(plane, cam));
         instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
