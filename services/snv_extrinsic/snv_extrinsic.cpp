@@ -12,12 +12,12 @@
 #include "ground_samples.hpp"
 #include "integral_normals.hpp"
 #include "local_normals.hpp"
+#include "lowest_surface.hpp"
 #include "roi_normal_stats.hpp"
 #include "slope_pitch.hpp"
 #include "super_snv.hpp"
 
 namespace nerv::snv {
-namespace {
 
 IntegralNormalParams normalParams(const Params& p) {
   IntegralNormalParams n;
@@ -40,6 +40,8 @@ GroundSampleParams groundParams(const Params& p) {
   g.lower_margin_px = p.ground_lower_margin_px;
   return g;
 }
+
+namespace {
 
 PoseFilterParams filterParams(const Params& p) {
   PoseFilterParams f;
@@ -104,6 +106,11 @@ Params readParams(ConfigSection& s) {
   s.get("min_ground_normals", p.min_ground_normals, 1, 10000000);
   s.get("plane_fit", p.plane_fit);
   s.get("plane_tukey_k", p.plane_tukey_k, 1.0, 20.0);
+  s.get("plane_lowest_surface", p.plane_lowest_surface);
+  s.get("lowest_surface_band_px", p.lowest_surface_band_px, 1, 1000);
+  s.get("lowest_surface_min_fraction", p.lowest_surface_min_fraction, 0.0, 1.0);
+  s.get("lowest_surface_tolerance", p.lowest_surface_tolerance, 0.001, 1.0);
+  s.get("lowest_surface_passes", p.lowest_surface_passes, 1, 10);
   s.get("residual_entropy_bin", p.residual_entropy_bin, 1e-4, 1.0);
   s.get("pitch_source", p.pitch_source, {"mean_shift", "slope", "plane"});
   s.get("plane_pitch_inliers_only", p.plane_pitch_inliers_only);
@@ -195,9 +202,13 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
     points.reserve(samples.size());
     for (const GroundSample& s : samples) points.push_back(s.p);
     pose.instant_height_m = medianCameraHeight(points, instant_normal);
+    // Samples on the road surface itself (all, unless plane_lowest_surface) and their points.
+    std::vector<unsigned char> on_road(samples.size(), 1);
+    std::vector<cv::Vec3f> road_points = points;
     if (params_.plane_fit) {
-      // Roll from the robust road plane through every ground sample (see
-      // ground_plane_fit.hpp), started from the super-SNV plane. Pitch stays the
+      // Roll from the robust road plane through the ground samples on the road
+      // surface (see ground_plane_fit.hpp and the lowest-surface selection below),
+      // started from the super-SNV plane. Pitch stays the
       // mean-shift value: the plane's pitch is pulled by raised sidewalks and
       // SGBM fattening at the far rows (measured 0.08-0.23 deg p95 vs 0.06-0.18
       // deg), its roll is not (0.015-0.034 deg p95 vs 0.27-0.52 deg).
@@ -207,11 +218,45 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       const DisparityPlane start = planeFromNormal(instant_normal, pose.instant_height_m, cam);
       PlaneFitParams fit;
       fit.tukey_k = params_.plane_tukey_k;
-      const DisparityPlane plane = fitDisparityPlane(pts, cam, fit, &start);
+      DisparityPlane road_start = start;
+      if (params_.plane_lowest_surface) {
+        // Only the samples on the lowest surface (lowest_surface.hpp): raised
+        // sidewalks parallel to the road otherwise capture the plane. The
+        // selection is repeated from the plane fitted to the previous one.
+        LowestSurfaceParams lp;
+        lp.band_rows = params_.lowest_surface_band_px;
+        lp.min_peak_fraction = params_.lowest_surface_min_fraction;
+        lp.tolerance = params_.lowest_surface_tolerance;
+        DisparityPlane ref = start;
+        std::vector<PlanePoint> sub;
+        for (int pass = 0; pass < params_.lowest_surface_passes; ++pass) {
+          if (selectLowestSurface(pts, ref, cam, lp, on_road) < params_.min_ground_normals) {
+            on_road.assign(samples.size(), 1);
+            break;
+          }
+          sub.clear();
+          for (size_t i = 0; i < pts.size(); ++i)
+            if (on_road[i]) sub.push_back(pts[i]);
+          const DisparityPlane next = fitDisparityPlane(sub, cam, fit, &ref);
+          if (!next.valid) break;
+          ref = next;
+        }
+        road_start = ref;
+        road_points.clear();
+        for (size_t i = 0; i < samples.size(); ++i)
+          if (on_road[i]) road_points.push_back(samples[i].p);
+      }
+      std::vector<PlanePoint> road_pts;  // the samples on the road surface
+      road_pts.reserve(pts.size());
+      for (size_t i = 0; i < pts.size(); ++i)
+        if (on_road[i]) road_pts.push_back(pts[i]);
+      // Started from the last selection's plane (on the same samples it converges
+      // at once), else from the super-SNV plane.
+      const DisparityPlane plane = fitDisparityPlane(road_pts, cam, fit, &road_start);
       if (plane.valid) {
         pose.instant_roll_deg = normalRollDeg(planeNormal(plane, cam));
         instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
-        pose.instant_height_m = medianCameraHeight(points, instant_normal);
+        pose.instant_height_m = medianCameraHeight(road_points, instant_normal);
         // Entropy of the relative residuals (d - d_plane) / d of every ground
         // sample (1 % bins = 1.65 cm of height at 1.65 m): SGBM noise fills a
         // few bins; trap pixels that pass the ground tests widen it.
@@ -262,8 +307,9 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       // disagrees with the mean shift by more than the gate and the mean shift is kept.
       std::vector<PlanePoint> pts;
       pts.reserve(samples.size());
-      for (const GroundSample& s : samples) {
-        if (params_.plane_pitch_inliers_only && !inShiftWindow(s)) continue;
+      for (size_t i = 0; i < samples.size(); ++i) {
+        const GroundSample& s = samples[i];
+        if ((params_.plane_pitch_inliers_only && !inShiftWindow(s)) || !on_road[i]) continue;
         pts.push_back({static_cast<float>(s.u), static_cast<float>(s.v), s.d});
       }
       const DisparityPlane start = planeFromNormal(instant_normal, pose.instant_height_m, cam);
@@ -274,7 +320,7 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       if (plane.valid && std::abs(plane_pitch - pose.instant_pitch_deg) <= params_.plane_pitch_gate_deg) {
         pose.instant_pitch_deg = plane_pitch;
         instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
-        pose.instant_height_m = medianCameraHeight(points, instant_normal);
+        pose.instant_height_m = medianCameraHeight(road_points, instant_normal);
       }
     }
     pose.confidence = entropyConfidence(pose.entropy, params_.entropy_full_scale_bits);

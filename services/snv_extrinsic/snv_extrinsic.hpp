@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "ground_samples.hpp"
 #include "integral_normals.hpp"
 #include "perception_types.hpp"
 #include "pose_filter.hpp"
@@ -43,6 +44,11 @@ struct Params {
   // Road plane refinement (ground_plane_fit.hpp).
   bool plane_fit = true;                 // instant roll from the robust plane through the ground samples
   float plane_tukey_k = 2.5f;            // its biweight cut-off in robust sigmas of the relative residual
+  bool plane_lowest_surface = true;      // planes and height only from samples on the lowest horizontal surface (lowest_surface.hpp: no sidewalks)
+  int lowest_surface_band_px = 16;       // rows per band in which the road's residual peak is found [px]
+  float lowest_surface_min_fraction = 0.1f;  // share of its band the road peak must hold within the tolerance
+  float lowest_surface_tolerance = 0.035f;   // relative residual (d - d_plane) / d around the peak that is road
+  int lowest_surface_passes = 2;         // selections, each from the plane fitted to the previous one
   float residual_entropy_bin = 0.01f;    // entropy bin of the relative plane residuals (d - d_plane) / d
 
   // Instant pitch source (docs/snv.md "pitch_oscillation"): "plane" = a second robust plane
@@ -77,6 +83,10 @@ struct Params {
 };
 
 Params readParams(ConfigSection& section);
+// The integral-normal part of the parameters (what process() prepares its field with).
+IntegralNormalParams normalParams(const Params& params);
+// The ground-sample part of the parameters.
+GroundSampleParams groundParams(const Params& params);
 
 struct SnvResult {
   PoseEstimate pose;              // instant values and the temporally filtered ones

@@ -10,6 +10,7 @@
 #include "adaptive_mean_shift.hpp"
 #include "ground_plane_fit.hpp"
 #include "integral_normals.hpp"
+#include "lowest_surface.hpp"
 #include "pose_filter.hpp"
 #include "snv_extrinsic.hpp"
 #include "snv_test_scenes.hpp"
@@ -86,6 +87,79 @@ TEST(snvPlaneFit, RecoversRoadPlaneDespiteSidewalkAndOutliers) {
   EXPECT_NEAR(normalRollDeg(planeNormal(exact, c)), roll, 1e-3);
   EXPECT_NEAR(planeHeightM(exact, c), h, 1e-5);
   EXPECT_NEAR(exact.disparity(c, 600, 300), test::planeDisparity(c, n, h, 600, 300), 1e-3);
+}
+
+// Lowest-surface selection (lowest_surface.hpp) on the analytic road with raised
+// sidewalks (15 cm) on both sides that outnumber the road 3:1 in the upper rows
+// (the road centre there sparse, as nerv_sgm leaves it), 0.3 px noise, 8 % gross
+// outliers, and a start plane 0.3 deg / 0.5 deg off in pitch / roll: it keeps
+// the road and drops the sidewalks, and the plane through what it keeps is the road.
+TEST(snvLowestSurface, KeepsTheRoadAndDropsRaisedSidewalks) {
+  const StereoCamera c = test::kittiCamera();
+  const double pitch = -1.5, roll = 0.4, h = 1.65;
+  const cv::Vec3d n = test::roadNormal(pitch, roll);
+  cv::RNG rng(11);
+  std::vector<PlanePoint> pts;
+  std::vector<int> kind;  // 0 road, 1 sidewalk, 2 outlier
+  for (int v = 200; v < c.height; v += 4)
+    for (int u = 0; u < c.width; u += 4) {
+      const bool far_half = v < 290;
+      const bool sidewalk = u < (far_half ? 0.3 : 0.2) * c.width || u > (far_half ? 0.7 : 0.8) * c.width;
+      if (!sidewalk && far_half && rng.uniform(0.0, 1.0) < 0.5) continue;  // sparse road centre: ~25 % of the far rows
+      double d = test::planeDisparity(c, n, sidewalk ? h - 0.15 : h, u, v);
+      if (d < 13) continue;  // the 30 m ground range
+      int k = sidewalk ? 1 : 0;
+      d += rng.gaussian(0.3);
+      if (rng.uniform(0.0, 1.0) < 0.08) {
+        d += rng.uniform(-8.0, 8.0);
+        k = 2;
+      }
+      pts.push_back({float(u), float(v), float(d)});
+      kind.push_back(k);
+    }
+  const DisparityPlane start =
+      planeFromNormal(cv::Vec3f(test::roadNormal(pitch + 0.3, roll + 0.5)), float(h - 0.03), c);
+  PlaneFitParams fp;
+  fp.tukey_k = 2.5f;
+  // All points: the sidewalks pull the robust plane off (why the selection exists).
+  const cv::Vec3f all_n = planeNormal(fitDisparityPlane(pts, c, fp, &start), c);
+  EXPECT_GT(std::abs(normalPitchDeg(all_n) - pitch), 0.1);
+
+  LowestSurfaceParams lp;
+  std::vector<unsigned char> keep;
+  DisparityPlane ref = start;
+  for (int pass = 0; pass < 2; ++pass) {
+    const int kept = selectLowestSurface(pts, ref, c, lp, keep);
+    ASSERT_EQ(keep.size(), pts.size());
+    EXPECT_EQ(kept, std::count(keep.begin(), keep.end(), 1));
+    std::vector<PlanePoint> sub;
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (keep[i]) sub.push_back(pts[i]);
+    ref = fitDisparityPlane(sub, c, fp, &ref);
+    ASSERT_TRUE(ref.valid);
+  }
+  int count[3] = {0, 0, 0}, kept_of[3] = {0, 0, 0};
+  for (size_t i = 0; i < pts.size(); ++i) {
+    ++count[kind[i]];
+    kept_of[kind[i]] += keep[i];
+  }
+  ASSERT_GT(count[1], count[0] / 2);
+  EXPECT_GT(kept_of[0], 0.9 * count[0]);   // road kept
+  EXPECT_LT(kept_of[1], 0.02 * count[1]);  // sidewalks dropped
+  const cv::Vec3f fn = planeNormal(ref, c);
+  EXPECT_NEAR(normalPitchDeg(fn), pitch, 0.03);
+  EXPECT_NEAR(normalRollDeg(fn), roll, 0.03);
+  EXPECT_NEAR(planeHeightM(ref, c), h, 0.005);
+}
+
+TEST(snvLowestSurface, EmptyInputOrNoStartKeepsNothing) {
+  const StereoCamera c = test::kittiCamera();
+  std::vector<unsigned char> keep;
+  EXPECT_EQ(selectLowestSurface({}, planeFromNormal(cv::Vec3f(0, -1, 0), 1.6f, c), c, LowestSurfaceParams{}, keep), 0);
+  EXPECT_TRUE(keep.empty());
+  const std::vector<PlanePoint> pts = {{600, 300, 30}, {610, 300, 30}};
+  EXPECT_EQ(selectLowestSurface(pts, DisparityPlane{}, c, LowestSurfaceParams{}, keep), 0);
+  EXPECT_EQ(keep, std::vector<unsigned char>(2, 0));
 }
 
 // Box mean of the disparity over the (2r+1)^2 window at (u, v), brute force.

@@ -7,6 +7,9 @@
 // on pitch_oscillation and 0.071 on urban (target MET, pitch from the second plane fit on
 // the super-SNV window's samples; it was 0.179 on pitch_oscillation with the mean shift);
 // entropy of the plane residuals lower on urban than on wet_road (met, means).
+// With the lowest-surface selection (planes and height without raised sidewalks):
+// SGBM pitch_oscillation 0.031 / 0.034 deg / 0.8 cm, urban 0.068 / 0.020 / 0.7 cm,
+// wet_road 0.034 / 0.021 / 0.6 cm; entropy means urban 2.81, wet_road 3.11 bits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -153,17 +156,21 @@ TEST(snvSyntheticPose, FlatRoadAndWetRoad) {
 
 TEST(snvSyntheticPose, DefaultMatcherNervSgm) {
   // The same sequences with the pipeline's default matcher (nerv_sgm). Measured
-  // (docs/snv.md "Accuracy with nerv_sgm"): worse than SGBM; the bounds are
-  // REGRESSION BOUNDS, not the targets (pitch/roll 0.1 deg, height 2 cm).
-  // Measured: pitch_oscillation 0.301 / 0.229 / 0.078 m, urban 0.181 / 0.040 / 0.016 m.
+  // (docs/snv.md "Accuracy with nerv_sgm"): worse than SGBM; the pitch and height
+  // bounds are REGRESSION BOUNDS, not the targets (pitch/roll 0.1 deg, height 2 cm).
+  // Measured with the lowest-surface selection: pitch_oscillation 0.185 / 0.042 /
+  // 0.021 m (before it 0.304 / 0.228 / 0.078 m), urban 0.208 / 0.040 / 0.023 m
+  // (before 0.188 / 0.040 / 0.016 m). The remaining pitch error is the matcher's:
+  // a plane on nerv_sgm's disparity of the exact road-surface pixels is +0.1 deg
+  // off on average (bench_road_disparity "oracle plane").
   const Summary osc = summarise("nerv_sgm pitch_oscillation", runScene("pitch_oscillation", 14, 1, "nerv_sgm"));
-  EXPECT_LE(osc.pitch95, 0.35);
-  EXPECT_LE(osc.roll95, 0.3);
-  EXPECT_LE(osc.height95, 0.1);
+  EXPECT_LE(osc.pitch95, 0.25);
+  EXPECT_LE(osc.roll95, 0.1);  // target
+  EXPECT_LE(osc.height95, 0.035);
   const Summary urban = summarise("nerv_sgm urban", runScene("urban", 6, 3, "nerv_sgm"));
-  EXPECT_LE(urban.pitch95, 0.3);
-  EXPECT_LE(urban.roll95, 0.1);
-  EXPECT_LE(urban.height95, 0.05);
+  EXPECT_LE(urban.pitch95, 0.27);
+  EXPECT_LE(urban.roll95, 0.1);  // target
+  EXPECT_LE(urban.height95, 0.035);
 }
 
 }  // namespace
