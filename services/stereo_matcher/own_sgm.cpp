@@ -43,6 +43,18 @@ void parallelTasks(int threads, int tasks, F&& body) {
   });
 }
 
+// Marks the outer `border_x` columns and `border_y` rows invalid.
+void invalidateBorder(cv::Mat& disparity, cv::Mat& confidence, int border_x, int border_y) {
+  const int rows = disparity.rows, cols = disparity.cols;
+  for (int y = 0; y < rows; ++y) {
+    float* d = disparity.ptr<float>(y);
+    float* c = confidence.ptr<float>(y);
+    const bool whole_row = y < border_y || y >= rows - border_y;
+    for (int x = 0; x < cols; ++x)
+      if (whole_row || x < border_x || x >= cols - border_x) d[x] = c[x] = 0.0f;
+  }
+}
+
 struct StripeWorkspace {
   std::vector<uint8_t> forward[2], backward[2], cost_row[2];
   std::vector<uint8_t> sum, right_cost;
@@ -185,6 +197,12 @@ class OwnSgm : public StereoMatcher {
       }
     });
     PROFILE_MARK("horizontal+winners");
+    // The census is undefined within half a window of the image border (its
+    // code is 0 there, so every disparity costs the same): what the paths
+    // carry into those pixels is a guess, biased toward the neighbours' disparity
+    // (on the road the bottom rows read the row above them: too far). No
+    // measurement there, so no disparity.
+    invalidateBorder(disparity, confidence, p_.census_width / 2, p_.census_height / 2);
     // 3x3 median of the disparity (as in Hirschmueller 2008 and libSGM): the
     // census winners on low-texture road scatter per pixel (+-0.4 px) and
     // neighbours differing by > 1 px split the road into tiny normal windows

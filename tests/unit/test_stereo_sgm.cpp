@@ -104,6 +104,11 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
         if (S[at(y, x, d)] < S[at(y, x, best)]) best = d;
       disparity.at<float>(y, x) = static_cast<float>(best + p.min_disparity);
     }
+  // no census within half a window of the border: no measurement there
+  const int rw = p.census_width / 2, rh = p.census_height / 2;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      if (y < rh || y >= H - rh || x < rw || x >= W - rw) disparity.at<float>(y, x) = 0.0f;
   return disparity;
 }
 
