@@ -84,6 +84,73 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
   tower.swap(out_tower);
 }
 
+// The side of a vehicle seen at a grazing angle recedes by metres per strip
+// (a face parallel to the optical axis at lateral offset X changes depth by
+// z^2/(fx*|X|) per pixel column), so beyond ~15 m its one or two strips split
+// from the vehicle's rear by depth and become a box of their own. A group of
+// at most side_max_stixels strips joins a larger group it touches when it is
+// shaped like such a side:
+//  - it lies towards the principal point from the body: a face parallel to
+//    the optical axis projects towards the vanishing point as it recedes, so
+//    a "side" on the outward side is another object (a post, a pedestrian);
+//  - it recedes monotonically, starting behind the body's facing stixel, and
+//    its far end is at most side_max_depth_m (about a vehicle's length)
+//    behind the body's nearest stixel: the next car of a parked row starts
+//    a gap beyond the first car's front and stays a box of its own;
+//  - it continues the body's silhouette: its top row within
+//    side_top_tolerance of the facing stixel's pixel height.
+void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower, const StereoCamera& cam,
+               const GroupingParams& p) {
+  if (p.side_max_stixels <= 0) return;
+  const int cw = std::max(1, p.column_width_px);
+  const double cx = cam.cx;
+  auto centre = [](const Stixel* s) { return s->u + 0.5 * s->width; };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < groups.size() && !changed; ++i) {
+      auto& side = groups[i];
+      if (side.empty() || static_cast<int>(side.size()) > p.side_max_stixels || tower[i]) continue;
+      for (size_t j = 0; j < groups.size() && !changed; ++j) {
+        auto& body = groups[j];
+        if (j == i || body.size() <= side.size() || tower[j]) continue;
+        // Facing stixels: body's last and side's first (side to the right), or the reverse.
+        const Stixel* b = nullptr;
+        const Stixel* s = nullptr;
+        bool right = false;
+        if (side.front()->u == body.back()->u + body.back()->width || side.front()->u == body.back()->u + cw)
+          b = body.back(), s = side.front(), right = true;
+        else if (body.front()->u == side.back()->u + side.back()->width || body.front()->u == side.back()->u + cw)
+          b = body.front(), s = side.back();
+        if (!b) continue;
+        // Towards the principal point: a side right of its body lies left of cx, and vice versa.
+        if (right ? centre(side.back()) > cx : centre(side.front()) < cx) continue;
+        // Receding: each stixel farther than the one before it, from the body outwards.
+        bool recedes = s->depth_m > b->depth_m;
+        float far_m = s->depth_m;
+        for (size_t k = 1; k < side.size() && recedes; ++k) {
+          const Stixel* nearer = right ? side[k - 1] : side[side.size() - k];
+          const Stixel* farther = right ? side[k] : side[side.size() - k - 1];
+          recedes = farther->depth_m > nearer->depth_m;
+          far_m = std::max(far_m, farther->depth_m);
+        }
+        // Measured from the body's nearest stixel, so that sides joined one
+        // after the other cannot chain a parked row into one box.
+        float near_m = b->depth_m;
+        for (const Stixel* x : body) near_m = std::min(near_m, x->depth_m);
+        const int height_px = b->bottom_row - b->top_row + 1;
+        if (!recedes || far_m - near_m > p.side_max_depth_m ||
+            std::abs(s->top_row - b->top_row) > p.side_top_tolerance * height_px)
+          continue;
+        body.insert(body.end(), side.begin(), side.end());
+        std::sort(body.begin(), body.end(), [](const Stixel* x, const Stixel* y) { return x->u < y->u; });
+        groups.erase(groups.begin() + static_cast<long>(i));
+        tower.erase(tower.begin() + static_cast<long>(i));
+        changed = true;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const StereoCamera& cam,
@@ -117,6 +184,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
 
   std::vector<bool> tower(groups.size(), false);
   splitTowers(groups, tower, cam, p);
+  joinSides(groups, tower, cam, p);
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;

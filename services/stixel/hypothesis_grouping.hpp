@@ -15,6 +15,9 @@ struct GroupingParams {
   float group_depth_gap_m = 1.5f;      // neighbours farther apart in depth split a group
   float group_lateral_gap_m = 0.6f;    // neighbours farther apart sideways split a group
   int min_stixels_per_hypothesis = 2;  // smaller groups are dropped
+  int side_max_stixels = 3;            // a vehicle's receding side (this many strips at most) ...
+  float side_max_depth_m = 6.0f;       // ... ending at most this far behind its nearest stixel [m] (a car length + depth noise) ...
+  float side_top_tolerance = 0.15f;    // ... with its top within this share of the group's height joins it; 0 strips = off
   float tower_min_height_m = 0.0f;     // a post in a hedge / on a kerb: stixels this tall ... (0 = off)
   float tower_height_ratio = 2.0f;     // ... and this many times the group's median height ...
   float tower_max_width_m = 0.8f;      // ... over at most this width leave the group as their own

@@ -16,6 +16,9 @@ Params readParams(ConfigSection& c) {
   c.get("group_depth_gap_m", p.group_depth_gap_m, 0.0, 100.0);
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
   c.get("occluded_stixels", p.occluded_stixels);
+  c.get("side_max_stixels", p.side_max_stixels, 0, 100);
+  c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
+  c.get("side_top_tolerance", p.side_top_tolerance, 0.0, 1.0);
   c.get("tower_min_height_m", p.tower_min_height_m, 0.0, 20.0);
   c.get("tower_height_ratio", p.tower_height_ratio, 1.0, 100.0);
   c.get("tower_max_width_m", p.tower_max_width_m, 0.01, 10.0);
