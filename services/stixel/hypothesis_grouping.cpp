@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace nerv::stixel {
 
 namespace {
+
+constexpr int kNoSurround = std::numeric_limits<int>::max();
 
 // Depth and lateral gap between two stixels (a left of b).
 bool joins(const Stixel& a, const Stixel& b, const StereoCamera& cam, const GroupingParams& p) {
@@ -33,17 +36,21 @@ float heightOf(const Stixel& s, const StereoCamera& cam) {
 // tower_height_ratio times the group's median height, no wider than
 // tower_max_width_m, leave the group as groups of their own; the rest of
 // the group stays one group per contiguous part. Split-off towers are
-// marked so that a one-stixel post is not dropped as too small.
+// marked so that a one-stixel post is not dropped as too small, and they
+// carry the top row of the stixels beside them (clear_above): below it the
+// post stands in the hedge, at the hedge's depth, so only the rows above it
+// show where the post's own edges are.
 void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
-                 const StereoCamera& cam, const GroupingParams& p) {
+                 std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
   if (p.tower_min_height_m <= 0) return;
   std::vector<std::vector<const Stixel*>> out;
   std::vector<bool> out_tower;
+  std::vector<int> out_clear;
   std::vector<float> h;
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const auto& g = groups[gi];
     if (g.size() < 2) {
-      out.push_back(g), out_tower.push_back(tower[gi]);
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
     h.clear();
@@ -69,7 +76,7 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
       k = e;
     }
     if (!any) {
-      out.push_back(g), out_tower.push_back(tower[gi]);
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
     for (size_t k = 0; k < g.size();) {
@@ -77,11 +84,18 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
       while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
       out.emplace_back(g.begin() + k, g.begin() + e);
       out_tower.push_back(is_tower[k]);
+      int clear = kNoSurround;
+      if (is_tower[k]) {
+        if (k > 0) clear = std::min(clear, g[k - 1]->top_row);
+        if (e < g.size()) clear = std::min(clear, g[e]->top_row);
+      }
+      out_clear.push_back(clear);
       k = e;
     }
   }
   groups.swap(out);
   tower.swap(out_tower);
+  clear_above.swap(out_clear);
 }
 
 // The side of a vehicle seen at a grazing angle recedes by metres per strip
@@ -99,8 +113,8 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
 //    a gap beyond the first car's front and stays a box of its own;
 //  - it continues the body's silhouette: its top row within
 //    side_top_tolerance of the facing stixel's pixel height.
-void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower, const StereoCamera& cam,
-               const GroupingParams& p) {
+void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+               std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
   if (p.side_max_stixels <= 0) return;
   const int cw = std::max(1, p.column_width_px);
   const double cx = cam.cx;
@@ -145,6 +159,7 @@ void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool
         std::sort(body.begin(), body.end(), [](const Stixel* x, const Stixel* y) { return x->u < y->u; });
         groups.erase(groups.begin() + static_cast<long>(i));
         tower.erase(tower.begin() + static_cast<long>(i));
+        clear_above.erase(clear_above.begin() + static_cast<long>(i));
         changed = true;
       }
     }
@@ -183,8 +198,9 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   }
 
   std::vector<bool> tower(groups.size(), false);
-  splitTowers(groups, tower, cam, p);
-  joinSides(groups, tower, cam, p);
+  std::vector<int> clear_above(groups.size(), kNoSurround);
+  splitTowers(groups, tower, clear_above, cam, p);
+  joinSides(groups, tower, clear_above, cam, p);
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;
@@ -209,7 +225,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     }
     if (p.refine_boxes && input.disparity && input.ground) {
       PixelBox box{x0, x1, y0, y1};
-      refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box);
+      refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
+                p.tower_edges_above_surround ? clear_above[gi] : kNoSurround);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).

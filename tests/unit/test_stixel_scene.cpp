@@ -313,6 +313,43 @@ TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
   }
 }
 
+TEST(stixelBoxes, APostInAHedgeIsCutAtItsOwnWidth) {
+  // A 0.15 m post 1.4 m tall in a 0.6 m hedge, 3 m wide, both at 15 m. The
+  // post leaves the hedge's group (splitTowers); below the hedge's top the
+  // columns beside it are at its depth too, so only the rows above the hedge
+  // show its edges.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  const float z = 15.0f, d = static_cast<float>(cam.fx * cam.baseline_m / z);
+  const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
+  auto paint = [&](double x_left_m, double x_right_m, double top_m) {
+    const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+    const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+    const int v0 = static_cast<int>(std::lround(foot - top_m * px_per_m));
+    disp(cv::Range(v0, static_cast<int>(std::lround(foot))), cv::Range(u0, u1)).setTo(d);
+    return std::make_pair(u0, u1);
+  };
+  paint(-1.5, 1.5, 0.6);
+  const auto post = paint(0.02, 0.17, 1.4);
+  auto postBox = [&](const Params& p) {
+    Box best{};
+    for (const Hypothesis& h : estimateStixels(disp, cam, p).hypotheses)
+      if (std::abs(h.z_m - z) < 0.5f && h.height_m > 1.0f) best = h.box;
+    return best;
+  };
+  const Box on = postBox(Params{});
+  ASSERT_GT(on.w, 0) << "the post has a hypothesis of its own";
+  EXPECT_NEAR(on.x, post.first, 1);
+  EXPECT_NEAR(on.x + on.w, post.second, 1);
+  Params off;
+  off.tower_edges_above_surround = false;
+  // Judged on all rows, the hedge beside the post widens its box, and then the
+  // post fills too little of the box's top rows: the top drops to the hedge.
+  const Box wide = postBox(off);
+  EXPECT_TRUE(wide.w == 0 || wide.w > on.w + 3) << wide.x << " " << wide.w;
+}
+
 TEST(stixelReference, FastPathAgreesWithPerColumnReference) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
