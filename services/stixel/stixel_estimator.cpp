@@ -78,6 +78,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   fs.max_disparity_px = params.max_disparity_px;
   fs.smoothness_m = params.freespace_smoothness_m;
   fs.jump_cap_bins = params.freespace_jump_cap_bins;
+  fs.max_clearance_m = params.max_clearance_m;
   ep.object_depth_tolerance_m = params.object_depth_tolerance_m;
   ep.max_stixel_height_m = params.max_stixel_height_m;
 

@@ -40,6 +40,7 @@ struct Params {
   float min_ground_disparity_span_px = 5.0f;  // ground inliers must span this disparity range
   float freespace_smoothness_m = 0.05f;  // free-space DP cost per disparity bin of boundary jump
   int freespace_jump_cap_bins = 4;       // larger boundary jumps cost no more (object edges)
+  float max_clearance_m = 1.5f;          // free space: evidence not reaching this low over the road hangs over it (tree crowns); 0 = off
   float object_depth_tolerance_m = 1.5f; // height segmentation: pixels within this depth of a stixel belong to it
   float max_stixel_height_m = 10.0f;     // height segmentation looks no higher over the road (poles, trucks)
   float min_single_stixel_height_m = 0.0f; // a lone stixel at least this tall is kept as a hypothesis; 0 = never (measured: more FPs than posts found)

@@ -109,6 +109,36 @@ TEST(stixelFreeSpace, NearerObstacleWinsInItsColumns) {
   EXPECT_GE(behind, 8);  // the wall continues above the box
 }
 
+TEST(stixelFreeSpace, ATreeCrownOverThePavementDoesNotHideAPedestrianBelowIt) {
+  // A crown 2.0-2.5 m over the road at 10 m, 2 m wide, and a 1.7 m pedestrian
+  // at 15 m below it: the crown is nearer, but it does not come down to the
+  // road, so the pedestrian (not the crown) bounds the free space there.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  auto paint = [&](float z, double x_left_m, double x_right_m, double bottom_m, double top_m) {
+    const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
+    const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+    const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+    disp(cv::Range(static_cast<int>(std::lround(foot - top_m * px_per_m)),
+                   static_cast<int>(std::lround(foot - bottom_m * px_per_m))),
+         cv::Range(u0, u1))
+        .setTo(static_cast<float>(cam.fx * cam.baseline_m / z));
+  };
+  paint(15.0f, -0.3, 0.3, 0.0, 1.7);
+  paint(10.0f, -1.0, 1.0, 2.0, 2.5);
+  auto pedestrians = [&](const Params& p) {
+    int n = 0;
+    for (const Hypothesis& h : estimateStixels(disp, cam, p).hypotheses)
+      n += std::abs(h.z_m - 15.0f) < 1.0f && h.height_m > 1.4f ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(pedestrians(Params{}), 1);
+  Params off;
+  off.max_clearance_m = 0.0f;
+  EXPECT_EQ(pedestrians(off), 0) << "without the clearance the crown takes the pedestrian's strips";
+}
+
 TEST(stixelGrouping, SplitsTwoBoxesAtDifferentDepthsAndMergesOneWideBox) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
