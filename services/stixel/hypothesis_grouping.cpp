@@ -98,6 +98,42 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
   clear_above.swap(out_clear);
 }
 
+// A pedestrian beside a tree trunk or a facade, or a car parked against a
+// wall, is at the structure's depth and joins its group; the box then
+// covers the tree's crown and is rejected as too tall, and the road user
+// is lost. No road user is taller than structure_min_height_m (the
+// tallest trucks are ~4 m), so a group holding stixels that tall and
+// stixels lower than that is split into runs of each (in u order): the
+// structure's box stays (the validator judges it), the road user gets its
+// own. Runs too small for a hypothesis are dropped as before.
+void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                     std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (p.structure_min_height_m <= 0) return;
+  std::vector<std::vector<const Stixel*>> out;
+  std::vector<bool> out_tower;
+  std::vector<int> out_clear;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    size_t tall = 0;
+    for (const Stixel* s : g) tall += heightOf(*s, cam) >= p.structure_min_height_m ? 1 : 0;
+    if (tower[gi] || tall == 0 || tall == g.size()) {
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
+      continue;
+    }
+    for (size_t k = 0; k < g.size();) {
+      const bool is_tall = heightOf(*g[k], cam) >= p.structure_min_height_m;
+      size_t e = k + 1;
+      while (e < g.size() && (heightOf(*g[e], cam) >= p.structure_min_height_m) == is_tall) ++e;
+      out.emplace_back(g.begin() + k, g.begin() + e);
+      out_tower.push_back(false), out_clear.push_back(kNoSurround);
+      k = e;
+    }
+  }
+  groups.swap(out);
+  tower.swap(out_tower);
+  clear_above.swap(out_clear);
+}
+
 // The side of a vehicle seen at a grazing angle recedes by metres per strip
 // (a face parallel to the optical axis at lateral offset X changes depth by
 // z^2/(fx*|X|) per pixel column), so beyond ~15 m its one or two strips split
@@ -200,6 +236,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   std::vector<bool> tower(groups.size(), false);
   std::vector<int> clear_above(groups.size(), kNoSurround);
   splitTowers(groups, tower, clear_above, cam, p);
+  splitStructures(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
 
   std::vector<Hypothesis> out;

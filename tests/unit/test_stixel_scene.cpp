@@ -257,6 +257,32 @@ TEST(stixelGrouping, APostInAHedgeLeavesTheHedgesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
+  // A tree (trunk and crown, 8 m tall, 3 strips) and a 1.7 m pedestrian
+  // (2 strips) right beside it, both at 15 m: one group by depth.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  p.structure_min_height_m = 4.5f;
+  std::vector<Stixel> st;
+  for (int u = 600; u < 625; u += 5) {
+    Stixel s = makeStixel(cam, u, 15.0f);
+    const float height_m = u < 615 ? 8.0f : 1.7f;
+    s.top_row = s.bottom_row - static_cast<int>(height_m * cam.fy / 15.0f);
+    st.push_back(s);
+  }
+  auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, 615);
+  EXPECT_NEAR(hs[1].height_m, 1.7f, 0.1f);
+  // Off, or a truck (4 m: lower than any tree) beside it: one group.
+  p.structure_min_height_m = 0.0f;
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+  p.structure_min_height_m = 4.5f;
+  for (Stixel& s : st)
+    if (s.u < 615) s.top_row = s.bottom_row - static_cast<int>(4.0f * cam.fy / 15.0f);
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+}
+
 TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
   // A car's rear at 30 m right of the principal point (6 strips); its left
   // side, seen at a grazing angle, recedes 2 m per strip towards the image
