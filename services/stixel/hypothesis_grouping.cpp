@@ -144,9 +144,11 @@ void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vecto
 //    the optical axis projects towards the vanishing point as it recedes, so
 //    a "side" on the outward side is another object (a post, a pedestrian);
 //  - it recedes monotonically, starting behind the body's facing stixel, and
-//    its far end is at most side_max_depth_m (about a vehicle's length)
-//    behind the body's nearest stixel: the next car of a parked row starts
-//    a gap beyond the first car's front and stays a box of its own;
+//    its far end is at most side_length_per_height times the facing
+//    stixel's height behind the body's nearest stixel: a vehicle is at most
+//    about 4 times as long as it is tall (car 4.5 / 1.5 m, truck 9 / 3.6 m,
+//    bus 12 / 3.2 m), so the next car of a parked row, which starts a gap
+//    beyond the first car's front, stays a box of its own;
 //  - it continues the body's silhouette: its top row within
 //    side_top_tolerance of the facing stixel's pixel height.
 void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
@@ -188,7 +190,8 @@ void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool
         float near_m = b->depth_m;
         for (const Stixel* x : body) near_m = std::min(near_m, x->depth_m);
         const int height_px = b->bottom_row - b->top_row + 1;
-        if (!recedes || far_m - near_m > p.side_max_depth_m ||
+        const float max_length_m = std::max(p.side_max_depth_m, p.side_length_per_height * heightOf(*b, cam));
+        if (!recedes || far_m - near_m > max_length_m ||
             std::abs(s->top_row - b->top_row) > p.side_top_tolerance * height_px)
           continue;
         body.insert(body.end(), side.begin(), side.end());

@@ -98,6 +98,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.min_stixels_per_hypothesis = params.min_stixels_per_hypothesis;
   gp.side_max_stixels = params.side_max_stixels;
   gp.side_max_depth_m = params.side_max_depth_m;
+  gp.side_length_per_height = params.side_length_per_height;
   gp.side_top_tolerance = params.side_top_tolerance;
   gp.tower_min_height_m = params.tower_min_height_m;
   gp.tower_height_ratio = params.tower_height_ratio;

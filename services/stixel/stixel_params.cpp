@@ -18,6 +18,7 @@ Params readParams(ConfigSection& c) {
   c.get("occluded_stixels", p.occluded_stixels);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
+  c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);
   c.get("side_top_tolerance", p.side_top_tolerance, 0.0, 1.0);
   c.get("tower_min_height_m", p.tower_min_height_m, 0.0, 20.0);
   c.get("tower_height_ratio", p.tower_height_ratio, 1.0, 100.0);

@@ -284,21 +284,26 @@ TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
 }
 
 TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
-  // A car's rear at 30 m right of the principal point (6 strips); its left
-  // side, seen at a grazing angle, recedes 2 m per strip towards the image
-  // centre: each side strip is farther than the 1.5 m grouping gap.
+  // A car's rear (1.5 m tall) at 30 m right of the principal point (6 strips);
+  // its left side, seen at a grazing angle, recedes 2 m per strip towards the
+  // image centre: each side strip is farther than the 1.5 m grouping gap.
   const StereoCamera cam = kittiLikeCamera();
   ASSERT_LT(cam.cx, 780.0);
   GroupingParams p;
   p.side_max_stixels = 3;
+  auto car = [&](int u, float z, float height_m = 1.5f) {
+    Stixel s = makeStixel(cam, u, z);
+    s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
+    return s;
+  };
   std::vector<Stixel> body;
-  for (int u = 800; u < 830; u += 5) body.push_back(makeStixel(cam, u, 30.0f));
+  for (int u = 800; u < 830; u += 5) body.push_back(car(u, 30.0f));
   auto with = [&](std::vector<Stixel> extra) {
     extra.insert(extra.end(), body.begin(), body.end());
     std::sort(extra.begin(), extra.end(), [](const Stixel& a, const Stixel& b) { return a.u < b.u; });
     return groupStixels(extra, cam, p);
   };
-  const std::vector<Stixel> side = {makeStixel(cam, 790, 34.0f), makeStixel(cam, 795, 32.0f)};
+  const std::vector<Stixel> side = {car(790, 34.0f), car(795, 32.0f)};
   auto hs = with(side);
   ASSERT_EQ(hs.size(), 1u);
   EXPECT_EQ(hs[0].box.x, 790);
@@ -314,24 +319,29 @@ TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
 
   // The same strips on the outward side cannot be the car's side (a side
   // projects towards the vanishing point): not joined.
-  hs = with({makeStixel(cam, 830, 32.0f), makeStixel(cam, 835, 34.0f)});
+  hs = with({car(830, 32.0f), car(835, 34.0f)});
   ASSERT_EQ(hs.size(), 1u);
   EXPECT_EQ(hs[0].box.x + hs[0].box.w, 830);
 
-  // The next car of a parked row, 6 m behind the rear: a box of its own.
-  hs = with({makeStixel(cam, 790, 36.5f), makeStixel(cam, 795, 36.0f)});
+  // The next car of a parked row, 6.5 m behind the rear (more than a car's
+  // length): a box of its own.
+  hs = with({car(790, 36.5f), car(795, 36.0f)});
   ASSERT_EQ(hs.size(), 2u);
   EXPECT_EQ(hs[1].box.x, 800);
 
   // Something nearer than the rear, or taller than the car (a pedestrian
   // beside it), is not its side.
-  hs = with({makeStixel(cam, 790, 28.0f), makeStixel(cam, 795, 28.0f)});
+  hs = with({car(790, 28.0f), car(795, 28.0f)});
   EXPECT_EQ(hs.size(), 2u);
-  std::vector<Stixel> tall = side;
-  for (Stixel& s : tall) s.top_row -= 40;
-  hs = with(tall);
-  EXPECT_EQ(hs.size(), 1u);
+  hs = with({car(790, 34.0f, 1.9f), car(795, 32.0f, 1.9f)});
+  ASSERT_EQ(hs.size(), 1u);
   EXPECT_EQ(hs[0].box.x, 800);
+
+  // A truck (3.6 m tall) is longer: its side may end 9 m behind its rear.
+  for (Stixel& s : body) s = car(s.u, 30.0f, 3.6f);
+  hs = with({car(790, 39.0f, 3.6f), car(795, 35.0f, 3.6f)});
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x, 790);
 }
 
 TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
