@@ -134,6 +134,76 @@ void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vecto
   clear_above.swap(out_clear);
 }
 
+// Surfaces along the road (a guard rail, a wall, a car's side) recede at a
+// nearly constant lateral offset X, faces across it (a car's rear, a
+// pedestrian) at a nearly constant depth Z. A receding surface that ends
+// at a face joins it by depth, and a group too deep for one vehicle is such
+// a chain: a guard rail running up to the car in front of it, a parked
+// car's side running up to the next car's rear. A surface recedes away from
+// the face it belongs to (a car's side from its own rear), so a face at the
+// far end of a receding run is another object: the group is cut before it.
+// Direction of a run of stixels: principal axis of their (X, Z) base points.
+// Returns 1 for "along the road" (within ~27 deg of the optical axis), -1
+// for "across" (within 45 deg of the image plane), 0 otherwise.
+int runDirection(const std::vector<const Stixel*>& s, size_t a, size_t b, const StereoCamera& cam) {
+  const double n = static_cast<double>(b - a);
+  double mx = 0, mz = 0;
+  std::vector<double> xs, zs;
+  for (size_t k = a; k < b; ++k) {
+    const double z = s[k]->depth_m, x = (s[k]->u + 0.5 * s[k]->width - cam.cx) * z / cam.fx;
+    xs.push_back(x), zs.push_back(z), mx += x, mz += z;
+  }
+  mx /= n, mz /= n;
+  double sxx = 0, szz = 0, sxz = 0;
+  for (size_t k = 0; k < xs.size(); ++k)
+    sxx += (xs[k] - mx) * (xs[k] - mx), szz += (zs[k] - mz) * (zs[k] - mz), sxz += (xs[k] - mx) * (zs[k] - mz);
+  const double angle_deg = std::abs(0.5 * std::atan2(2 * sxz, sxx - szz)) * 180.0 / M_PI;  // from the X axis
+  return angle_deg > 63.0 ? 1 : angle_deg < 45.0 ? -1 : 0;
+}
+
+void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                 std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (!p.split_chains) return;
+  constexpr size_t kRun = 4;  // stixels on each side of a cut
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    if (tower[gi] || g.size() < 2 * kRun) continue;
+    // One stixel per strip (the nearest), contiguous strips only.
+    std::vector<const Stixel*> s;
+    for (const Stixel* x : g)
+      if (!s.empty() && s.back()->u == x->u) {
+        if (x->depth_m < s.back()->depth_m) s.back() = x;
+      } else {
+        s.push_back(x);
+      }
+    if (s.size() < 2 * kRun) continue;
+    float zmin = s[0]->depth_m, zmax = zmin;
+    std::vector<float> h;
+    for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(heightOf(*x, cam));
+    std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
+    if (zmax - zmin <= std::max(p.side_max_depth_m, p.side_length_per_height * h[h.size() / 2])) continue;
+    int cut_u = -1;
+    for (size_t c = kRun; c + kRun <= s.size() && cut_u < 0; ++c) {
+      bool contiguous = true;
+      for (size_t k = c - kRun + 1; k < c + kRun; ++k) contiguous = contiguous && s[k]->u - s[k - 1]->u <= s[k - 1]->width;
+      if (!contiguous) continue;
+      const int left = runDirection(s, c - kRun, c, cam), right = runDirection(s, c, c + kRun, cam);
+      // Along-road run receding towards the face it meets.
+      const bool rail_then_face = left == 1 && right == -1 && s[c - 1]->depth_m > s[c - kRun]->depth_m;
+      const bool face_then_rail = left == -1 && right == 1 && s[c]->depth_m > s[c + kRun - 1]->depth_m;
+      if (rail_then_face || face_then_rail) cut_u = s[c]->u;
+    }
+    if (cut_u < 0) continue;
+    std::vector<const Stixel*> a, b;
+    for (const Stixel* x : g) (x->u < cut_u ? a : b).push_back(x);
+    groups[gi] = a;
+    groups.insert(groups.begin() + static_cast<long>(gi) + 1, b);
+    tower.insert(tower.begin() + static_cast<long>(gi) + 1, false);
+    clear_above.insert(clear_above.begin() + static_cast<long>(gi) + 1, kNoSurround);
+    --gi;  // the left part may hold another chain
+  }
+}
+
 // The side of a vehicle seen at a grazing angle recedes by metres per strip
 // (a face parallel to the optical axis at lateral offset X changes depth by
 // z^2/(fx*|X|) per pixel column), so beyond ~15 m its one or two strips split
@@ -240,6 +310,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   std::vector<int> clear_above(groups.size(), kNoSurround);
   splitTowers(groups, tower, clear_above, cam, p);
   splitStructures(groups, tower, clear_above, cam, p);
+  splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
 
   std::vector<Hypothesis> out;

@@ -23,6 +23,7 @@ struct GroupingParams {
   float tower_height_ratio = 2.0f;     // ... and this many times the group's median height ...
   float tower_max_width_m = 0.8f;      // ... over at most this width leave the group as their own
   float structure_min_height_m = 0.0f; // stixels this tall (trees, facades) and lower ones never share a group; 0 = off
+  bool split_chains = true;            // a group too deep for one vehicle is cut where a receding run meets a face at its far end
   bool tower_edges_above_surround = true;  // such a post's box edges are cut on its rows above the hedge only
   float min_obstacle_height_m = 0.25f; // lower groups are dropped
   float max_distance_m = 60.0f;        // farther groups are dropped

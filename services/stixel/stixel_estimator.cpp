@@ -105,6 +105,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.tower_max_width_m = params.tower_max_width_m;
   gp.tower_edges_above_surround = params.tower_edges_above_surround;
   gp.structure_min_height_m = params.structure_min_height_m;
+  gp.split_chains = params.split_chains;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;

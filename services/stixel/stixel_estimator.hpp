@@ -32,6 +32,7 @@ struct Params {
   float tower_height_ratio = 2.0f;       // ... this many times their group's median height ...
   float tower_max_width_m = 0.8f;        // ... no wider than this become hypotheses of their own
   float structure_min_height_m = 4.5f;   // stixels this tall (trees, facades: no road user is) never share a box with lower ones; 0 = off
+  bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
   bool tower_edges_above_surround = true;// such a post's box edges are cut on its rows above the hedge only
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped

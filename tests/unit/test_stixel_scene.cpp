@@ -283,6 +283,41 @@ TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
+  // A 0.8 m guard rail 5 m left of the camera, seen from 8 m to 17 m, ends at
+  // a car's rear (1.5 m tall, X -4.7..-3.0 m) at 15.5 m: the rail's far end
+  // and the car are within the grouping gap, so rail and car were one group.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  auto at = [&](int u, float z, float height_m) {
+    Stixel s = makeStixel(cam, u, z);
+    s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
+    return s;
+  };
+  auto column = [&](double x_m, double z_m) { return static_cast<int>(cam.cx + cam.fx * x_m / z_m) / 5 * 5; };
+  std::vector<Stixel> rail, car;
+  for (int u = column(-5.0, 8.0); u < column(-5.0, 17.0); u += 5)
+    rail.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
+  for (int u = rail.back().u + 5; u < column(-3.0, 15.5); u += 5) car.push_back(at(u, 15.5f, 1.5f));
+  std::vector<Stixel> st = rail;
+  st.insert(st.end(), car.begin(), car.end());
+  p.split_chains = false;
+  ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "without the rule rail and car are one box";
+  p.split_chains = true;
+  auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, car.front().u);
+  EXPECT_EQ(hs[1].num_stixels, static_cast<int>(car.size()));
+
+  // A face at the near end of the receding run is not cut (a car's rear and
+  // its own side recede away from each other): a car's rear at 8 m just left
+  // of where the rail starts.
+  std::vector<Stixel> away;
+  for (int u = column(-6.7, 8.0); u < rail.front().u; u += 5) away.push_back(at(u, 8.0f, 1.5f));
+  away.insert(away.end(), rail.begin(), rail.end());
+  EXPECT_EQ(groupStixels(away, cam, p).size(), 1u);
+}
+
 TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
   // A car's rear (1.5 m tall) at 30 m right of the principal point (6 strips);
   // its left side, seen at a grazing angle, recedes 2 m per strip towards the
