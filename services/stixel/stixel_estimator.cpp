@@ -81,6 +81,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   fs.max_clearance_m = params.max_clearance_m;
   ep.object_depth_tolerance_m = params.object_depth_tolerance_m;
   ep.max_stixel_height_m = params.max_stixel_height_m;
+  ep.occluded_nearest = params.occluded_nearest;
 
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);

@@ -35,6 +35,7 @@ struct Params {
   bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
   bool tower_edges_above_surround = true;// such a post's box edges are cut on its rows above the hedge only
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
+  bool occluded_nearest = true;          // ... the nearest surface above the occluder that fills min_obstacle_height_m, not the fullest
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak
   float max_disparity_px = 256.0f;       // disparities at or above are treated as invalid

@@ -16,6 +16,7 @@ Params readParams(ConfigSection& c) {
   c.get("group_depth_gap_m", p.group_depth_gap_m, 0.0, 100.0);
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
   c.get("occluded_stixels", p.occluded_stixels);
+  c.get("occluded_nearest", p.occluded_nearest);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
   c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);

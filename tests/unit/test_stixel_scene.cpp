@@ -211,6 +211,37 @@ TEST(stixelOccluded, PersonBehindACarGetsItsOwnHypothesis) {
   EXPECT_EQ(found, 1);
 }
 
+TEST(stixelOccluded, TheNearestSurfaceAboveTheOccluderWinsOverAFullerOneBehindIt) {
+  // A 1 m occluder at 8 m; above it the upper 0.3 m of something at 12 m (the
+  // next car of a parked row), and above that a facade at 30 m that fills more
+  // pixels: the second layer is the thing at 12 m, as the free space would
+  // choose the nearest obstacle.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  const int u0 = static_cast<int>(cam.cx) / 5 * 5 - 20, u1 = u0 + 40;
+  auto paint = [&](float z, double bottom_m, double top_m) {
+    const double foot = footRow(scene, cam, z);
+    disp(cv::Range(static_cast<int>(std::lround(foot - top_m * cam.fy / z)),
+                   static_cast<int>(std::lround(foot - bottom_m * cam.fy / z))),
+         cv::Range(u0, u1))
+        .setTo(static_cast<float>(cam.fx * cam.baseline_m / z));
+  };
+  paint(30.0f, 0.2, 2.4);
+  paint(12.0f, 0.0, 1.0);  // its lower part is hidden by the occluder
+  paint(8.0f, 0.0, 1.0);
+  auto secondLayerDepth = [&](const Params& p) {
+    float z = 0;
+    for (const Stixel& s : estimateStixels(disp, cam, p).stixels)
+      if (s.u >= u0 && s.u + s.width <= u1 && s.depth_m > 9.0f) z = s.depth_m;
+    return z;
+  };
+  EXPECT_NEAR(secondLayerDepth(Params{}), 12.0f, 0.5f);
+  Params fullest;
+  fullest.occluded_nearest = false;
+  EXPECT_NEAR(secondLayerDepth(fullest), 30.0f, 2.0f) << "the fullest surface is the facade";
+}
+
 TEST(stixelGrouping, GapsAndMinimumSize) {
   const StereoCamera cam = kittiLikeCamera();
   GroupingParams p;
