@@ -134,14 +134,6 @@ void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vecto
   clear_above.swap(out_clear);
 }
 
-// Surfaces along the road (a guard rail, a wall, a car's side) recede at a
-// nearly constant lateral offset X, faces across it (a car's rear, a
-// pedestrian) at a nearly constant depth Z. A receding surface that ends
-// at a face joins it by depth, and a group too deep for one vehicle is such
-// a chain: a guard rail running up to the car in front of it, a parked
-// car's side running up to the next car's rear. A surface recedes away from
-// the face it belongs to (a car's side from its own rear), so a face at the
-// far end of a receding run is another object: the group is cut before it.
 // Direction of a run of stixels: principal axis of their (X, Z) base points.
 // Returns 1 for "along the road" (within ~27 deg of the optical axis), -1
 // for "across" (within 45 deg of the image plane), 0 otherwise.
@@ -161,6 +153,14 @@ int runDirection(const std::vector<const Stixel*>& s, size_t a, size_t b, const 
   return angle_deg > 63.0 ? 1 : angle_deg < 45.0 ? -1 : 0;
 }
 
+// Surfaces along the road (a guard rail, a wall, a car's side) recede at a
+// nearly constant lateral offset X, faces across it (a car's rear, a
+// pedestrian) at a nearly constant depth Z. A receding surface that ends
+// at a face joins it by depth, and a group too deep for one vehicle is such
+// a chain: a guard rail running up to the car in front of it, a parked
+// car's side running up to the next car's rear. A surface recedes away from
+// the face it belongs to (a car's side from its own rear), so a face at the
+// far end of a receding run is another object: the group is cut before it.
 void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
                  std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
   if (!p.split_chains) return;
