@@ -39,7 +39,7 @@ ColumnFill columnFill(const cv::Mat& disp, const GroundModel& g, float road_tol_
 
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
-               const BoxRefinementParams& p, PixelBox& box) {
+               const BoxRefinementParams& p, PixelBox& box, int edge_rows_above) {
   if (group.empty() || disparity.empty()) return;
   const double fb = cam.fx * cam.baseline_m;
   const int cols = disparity.cols, cw = std::max(1, column_width_px);
@@ -48,8 +48,11 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   auto edgeOk = [&](const Stixel& s, int u) {
     if (u < 0 || u >= cols) return false;
     const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
-    const int rows = s.bottom_row - s.top_row + 1;
-    const ColumnFill f = columnFill(disparity, ground, p.ground_tolerance_m, u, s.top_row, s.bottom_row,
+    int last = s.bottom_row;
+    if (edge_rows_above < s.bottom_row && 4 * (edge_rows_above - s.top_row) >= s.bottom_row - s.top_row + 1)
+      last = edge_rows_above - 1;
+    const int rows = last - s.top_row + 1;
+    const ColumnFill f = columnFill(disparity, ground, p.ground_tolerance_m, u, s.top_row, last,
                                     s.disparity - tol, s.disparity + tol);
     const float run_px = p.min_column_run_m > 0 ? p.min_column_run_m * static_cast<float>(cam.fy) / s.depth_m : 1e9f;
     return f.count >= p.min_column_fill * rows || f.longest_run >= run_px;

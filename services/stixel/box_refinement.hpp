@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <limits>
 #include <vector>
 
 #include "perception_types.hpp"
@@ -35,8 +36,13 @@ struct PixelBox {
 // group: the stixels of one hypothesis, left to right. `box` holds their union
 // on input and the refined box on output (never wider than the union plus
 // max(one strip, max_extension_m) on each side, never taller than the union).
+// edge_rows_above: the edges are judged only on the stixel rows above this
+// row (a post standing in a hedge: below the hedge's top the columns beside
+// the post are at the post's depth too), when at least a quarter of the
+// stixel's rows lie above it; default: all rows.
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
-               const BoxRefinementParams& p, PixelBox& box);
+               const BoxRefinementParams& p, PixelBox& box,
+               int edge_rows_above = std::numeric_limits<int>::max());
 
 }  // namespace nerv::stixel

@@ -85,6 +85,7 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
   grid.filled_m.assign(cells, 0.0f);
   grid.reach_m.assign(cells, 0.0f);
   grid.base_m.assign(cells, 0.0f);
+  if (p.max_clearance_m > 0) grid.max_clearance_m = p.max_clearance_m;
   const double k = cam.fx * cam.baseline_m / cam.fy;
   for (int s = 0; s < grid.strips; ++s) {
     const int w = std::min(cw, disparity.cols - s * cw);
@@ -111,7 +112,8 @@ float obstacleScore(const OccupancyGrid& grid, int s, int k) {
     reach = std::max(reach, grid.reach_m[i]);
     base = std::min(base, grid.base_m[i]);
   }
-  return filled > 0 ? std::min(filled, reach - base) : 0.0f;
+  if (!(filled > 0) || base > grid.max_clearance_m) return 0.0f;
+  return std::min(filled, reach - base);
 }
 
 std::vector<int> solveFreeSpace(const OccupancyGrid& grid, const FreeSpaceParams& p) {

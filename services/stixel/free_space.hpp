@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <limits>
 #include <vector>
 
 #include "perception_types.hpp"
@@ -24,6 +25,8 @@ struct FreeSpaceParams {
   float max_disparity_px = 256.0f;        // disparities at or above are invalid
   float smoothness_m = 0.05f;             // DP cost per disparity bin of boundary jump [m]
   int jump_cap_bins = 4;                  // a jump costs at most this many bins (object edges)
+  float max_clearance_m = 0.0f;           // evidence whose lowest pixel is higher over the road floats
+                                          // (a tree crown over the sidewalk): none; 0 = off
 };
 
 // Column strip s x disparity bin k (1 px) of obstacle pixels, in metres:
@@ -41,12 +44,15 @@ struct OccupancyGrid {
   std::vector<float> filled_m;     // strips x bins
   std::vector<float> reach_m;      // strips x bins
   std::vector<float> base_m;       // strips x bins
+  float max_clearance_m = std::numeric_limits<float>::infinity();  // see FreeSpaceParams
   size_t index(int s, int k) const { return static_cast<size_t>(s) * bins + k; }
 };
 
 // Obstacle evidence [m] of strip s at bin k: over the bins k +- obstacleHalfWindow(k),
 // min(total filled height, highest reach - lowest base) -- it must both be dense
-// and stand upright.
+// and stand upright. Evidence that does not come down to max_clearance_m over
+// the road is none: it hangs over the road or sidewalk (a tree crown, a
+// bridge), and a free-space boundary there would hide what stands below it.
 float obstacleScore(const OccupancyGrid& grid, int s, int k);
 
 // Row-wise disparity window [lo, hi] in which a pixel is an obstacle

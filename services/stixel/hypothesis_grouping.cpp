@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace nerv::stixel {
 
 namespace {
+
+constexpr int kNoSurround = std::numeric_limits<int>::max();
 
 // Depth and lateral gap between two stixels (a left of b).
 bool joins(const Stixel& a, const Stixel& b, const StereoCamera& cam, const GroupingParams& p) {
@@ -33,17 +36,21 @@ float heightOf(const Stixel& s, const StereoCamera& cam) {
 // tower_height_ratio times the group's median height, no wider than
 // tower_max_width_m, leave the group as groups of their own; the rest of
 // the group stays one group per contiguous part. Split-off towers are
-// marked so that a one-stixel post is not dropped as too small.
+// marked so that a one-stixel post is not dropped as too small, and they
+// carry the top row of the stixels beside them (clear_above): below it the
+// post stands in the hedge, at the hedge's depth, so only the rows above it
+// show where the post's own edges are.
 void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
-                 const StereoCamera& cam, const GroupingParams& p) {
+                 std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
   if (p.tower_min_height_m <= 0) return;
   std::vector<std::vector<const Stixel*>> out;
   std::vector<bool> out_tower;
+  std::vector<int> out_clear;
   std::vector<float> h;
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const auto& g = groups[gi];
     if (g.size() < 2) {
-      out.push_back(g), out_tower.push_back(tower[gi]);
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
     h.clear();
@@ -69,7 +76,7 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
       k = e;
     }
     if (!any) {
-      out.push_back(g), out_tower.push_back(tower[gi]);
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
     for (size_t k = 0; k < g.size();) {
@@ -77,11 +84,195 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
       while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
       out.emplace_back(g.begin() + k, g.begin() + e);
       out_tower.push_back(is_tower[k]);
+      int clear = kNoSurround;
+      if (is_tower[k]) {
+        if (k > 0) clear = std::min(clear, g[k - 1]->top_row);
+        if (e < g.size()) clear = std::min(clear, g[e]->top_row);
+      }
+      out_clear.push_back(clear);
       k = e;
     }
   }
   groups.swap(out);
   tower.swap(out_tower);
+  clear_above.swap(out_clear);
+}
+
+// A pedestrian beside a tree trunk or a facade, or a car parked against a
+// wall, is at the structure's depth and joins its group; the box then
+// covers the tree's crown and is rejected as too tall, and the road user
+// is lost. No road user is taller than structure_min_height_m (the
+// tallest trucks are ~4 m), so a group holding stixels that tall and
+// stixels lower than that is split into runs of each (in u order): the
+// structure's box stays (the validator judges it), the road user gets its
+// own. Runs too small for a hypothesis are dropped as before.
+void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                     std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (p.structure_min_height_m <= 0) return;
+  std::vector<std::vector<const Stixel*>> out;
+  std::vector<bool> out_tower;
+  std::vector<int> out_clear;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    size_t tall = 0;
+    for (const Stixel* s : g) tall += heightOf(*s, cam) >= p.structure_min_height_m ? 1 : 0;
+    if (tower[gi] || tall == 0 || tall == g.size()) {
+      out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
+      continue;
+    }
+    for (size_t k = 0; k < g.size();) {
+      const bool is_tall = heightOf(*g[k], cam) >= p.structure_min_height_m;
+      size_t e = k + 1;
+      while (e < g.size() && (heightOf(*g[e], cam) >= p.structure_min_height_m) == is_tall) ++e;
+      out.emplace_back(g.begin() + k, g.begin() + e);
+      out_tower.push_back(false), out_clear.push_back(kNoSurround);
+      k = e;
+    }
+  }
+  groups.swap(out);
+  tower.swap(out_tower);
+  clear_above.swap(out_clear);
+}
+
+// Direction of a run of stixels: principal axis of their (X, Z) base points.
+// Returns 1 for "along the road" (within ~27 deg of the optical axis), -1
+// for "across" (within 45 deg of the image plane), 0 otherwise.
+int runDirection(const std::vector<const Stixel*>& s, size_t a, size_t b, const StereoCamera& cam) {
+  const double n = static_cast<double>(b - a);
+  double mx = 0, mz = 0;
+  std::vector<double> xs, zs;
+  for (size_t k = a; k < b; ++k) {
+    const double z = s[k]->depth_m, x = (s[k]->u + 0.5 * s[k]->width - cam.cx) * z / cam.fx;
+    xs.push_back(x), zs.push_back(z), mx += x, mz += z;
+  }
+  mx /= n, mz /= n;
+  double sxx = 0, szz = 0, sxz = 0;
+  for (size_t k = 0; k < xs.size(); ++k)
+    sxx += (xs[k] - mx) * (xs[k] - mx), szz += (zs[k] - mz) * (zs[k] - mz), sxz += (xs[k] - mx) * (zs[k] - mz);
+  const double angle_deg = std::abs(0.5 * std::atan2(2 * sxz, sxx - szz)) * 180.0 / M_PI;  // from the X axis
+  return angle_deg > 63.0 ? 1 : angle_deg < 45.0 ? -1 : 0;
+}
+
+// Surfaces along the road (a guard rail, a wall, a car's side) recede at a
+// nearly constant lateral offset X, faces across it (a car's rear, a
+// pedestrian) at a nearly constant depth Z. A receding surface that ends
+// at a face joins it by depth, and a group too deep for one vehicle is such
+// a chain: a guard rail running up to the car in front of it, a parked
+// car's side running up to the next car's rear. A surface recedes away from
+// the face it belongs to (a car's side from its own rear), so a face at the
+// far end of a receding run is another object: the group is cut before it.
+void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                 std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (!p.split_chains) return;
+  constexpr size_t kRun = 4;  // stixels on each side of a cut
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& g = groups[gi];
+    if (tower[gi] || g.size() < 2 * kRun) continue;
+    // One stixel per strip (the nearest), contiguous strips only.
+    std::vector<const Stixel*> s;
+    for (const Stixel* x : g)
+      if (!s.empty() && s.back()->u == x->u) {
+        if (x->depth_m < s.back()->depth_m) s.back() = x;
+      } else {
+        s.push_back(x);
+      }
+    if (s.size() < 2 * kRun) continue;
+    float zmin = s[0]->depth_m, zmax = zmin;
+    std::vector<float> h;
+    for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(heightOf(*x, cam));
+    std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
+    if (zmax - zmin <= std::max(p.side_max_depth_m, p.side_length_per_height * h[h.size() / 2])) continue;
+    int cut_u = -1;
+    for (size_t c = kRun; c + kRun <= s.size() && cut_u < 0; ++c) {
+      bool contiguous = true;
+      for (size_t k = c - kRun + 1; k < c + kRun; ++k) contiguous = contiguous && s[k]->u - s[k - 1]->u <= s[k - 1]->width;
+      if (!contiguous) continue;
+      const int left = runDirection(s, c - kRun, c, cam), right = runDirection(s, c, c + kRun, cam);
+      // Along-road run receding towards the face it meets.
+      const bool rail_then_face = left == 1 && right == -1 && s[c - 1]->depth_m > s[c - kRun]->depth_m;
+      const bool face_then_rail = left == -1 && right == 1 && s[c]->depth_m > s[c + kRun - 1]->depth_m;
+      if (rail_then_face || face_then_rail) cut_u = s[c]->u;
+    }
+    if (cut_u < 0) continue;
+    std::vector<const Stixel*> a, b;
+    for (const Stixel* x : g) (x->u < cut_u ? a : b).push_back(x);
+    groups[gi] = a;
+    groups.insert(groups.begin() + static_cast<long>(gi) + 1, b);
+    tower.insert(tower.begin() + static_cast<long>(gi) + 1, false);
+    clear_above.insert(clear_above.begin() + static_cast<long>(gi) + 1, kNoSurround);
+    --gi;  // the left part may hold another chain
+  }
+}
+
+// The side of a vehicle seen at a grazing angle recedes by metres per strip
+// (a face parallel to the optical axis at lateral offset X changes depth by
+// z^2/(fx*|X|) per pixel column), so beyond ~15 m its one or two strips split
+// from the vehicle's rear by depth and become a box of their own. A group of
+// at most side_max_stixels strips joins a larger group it touches when it is
+// shaped like such a side:
+//  - it lies towards the principal point from the body: a face parallel to
+//    the optical axis projects towards the vanishing point as it recedes, so
+//    a "side" on the outward side is another object (a post, a pedestrian);
+//  - it recedes monotonically, starting behind the body's facing stixel, and
+//    its far end is at most side_length_per_height times the facing
+//    stixel's height behind the body's nearest stixel: a vehicle is at most
+//    about 4 times as long as it is tall (car 4.5 / 1.5 m, truck 9 / 3.6 m,
+//    bus 12 / 3.2 m), so the next car of a parked row, which starts a gap
+//    beyond the first car's front, stays a box of its own;
+//  - it continues the body's silhouette: its top row within
+//    side_top_tolerance of the facing stixel's pixel height.
+void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+               std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (p.side_max_stixels <= 0) return;
+  const int cw = std::max(1, p.column_width_px);
+  const double cx = cam.cx;
+  auto centre = [](const Stixel* s) { return s->u + 0.5 * s->width; };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < groups.size() && !changed; ++i) {
+      auto& side = groups[i];
+      if (side.empty() || static_cast<int>(side.size()) > p.side_max_stixels || tower[i]) continue;
+      for (size_t j = 0; j < groups.size() && !changed; ++j) {
+        auto& body = groups[j];
+        if (j == i || body.size() <= side.size() || tower[j]) continue;
+        // Facing stixels: body's last and side's first (side to the right), or the reverse.
+        const Stixel* b = nullptr;
+        const Stixel* s = nullptr;
+        bool right = false;
+        if (side.front()->u == body.back()->u + body.back()->width || side.front()->u == body.back()->u + cw)
+          b = body.back(), s = side.front(), right = true;
+        else if (body.front()->u == side.back()->u + side.back()->width || body.front()->u == side.back()->u + cw)
+          b = body.front(), s = side.back();
+        if (!b) continue;
+        // Towards the principal point: a side right of its body lies left of cx, and vice versa.
+        if (right ? centre(side.back()) > cx : centre(side.front()) < cx) continue;
+        // Receding: each stixel farther than the one before it, from the body outwards.
+        bool recedes = s->depth_m > b->depth_m;
+        float far_m = s->depth_m;
+        for (size_t k = 1; k < side.size() && recedes; ++k) {
+          const Stixel* nearer = right ? side[k - 1] : side[side.size() - k];
+          const Stixel* farther = right ? side[k] : side[side.size() - k - 1];
+          recedes = farther->depth_m > nearer->depth_m;
+          far_m = std::max(far_m, farther->depth_m);
+        }
+        // Measured from the body's nearest stixel, so that sides joined one
+        // after the other cannot chain a parked row into one box.
+        float near_m = b->depth_m;
+        for (const Stixel* x : body) near_m = std::min(near_m, x->depth_m);
+        const int height_px = b->bottom_row - b->top_row + 1;
+        const float max_length_m = std::max(p.side_max_depth_m, p.side_length_per_height * heightOf(*b, cam));
+        if (!recedes || far_m - near_m > max_length_m ||
+            std::abs(s->top_row - b->top_row) > p.side_top_tolerance * height_px)
+          continue;
+        body.insert(body.end(), side.begin(), side.end());
+        std::sort(body.begin(), body.end(), [](const Stixel* x, const Stixel* y) { return x->u < y->u; });
+        groups.erase(groups.begin() + static_cast<long>(i));
+        tower.erase(tower.begin() + static_cast<long>(i));
+        clear_above.erase(clear_above.begin() + static_cast<long>(i));
+        changed = true;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -116,7 +307,11 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   }
 
   std::vector<bool> tower(groups.size(), false);
-  splitTowers(groups, tower, cam, p);
+  std::vector<int> clear_above(groups.size(), kNoSurround);
+  splitTowers(groups, tower, clear_above, cam, p);
+  splitStructures(groups, tower, clear_above, cam, p);
+  splitChains(groups, tower, clear_above, cam, p);
+  joinSides(groups, tower, clear_above, cam, p);
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;
@@ -141,7 +336,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     }
     if (p.refine_boxes && input.disparity && input.ground) {
       PixelBox box{x0, x1, y0, y1};
-      refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box);
+      refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
+                p.tower_edges_above_surround ? clear_above[gi] : kNoSurround);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).

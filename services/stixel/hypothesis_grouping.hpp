@@ -15,9 +15,16 @@ struct GroupingParams {
   float group_depth_gap_m = 1.5f;      // neighbours farther apart in depth split a group
   float group_lateral_gap_m = 0.6f;    // neighbours farther apart sideways split a group
   int min_stixels_per_hypothesis = 2;  // smaller groups are dropped
+  int side_max_stixels = 3;            // a vehicle's receding side (this many strips at most) ...
+  float side_max_depth_m = 6.0f;       // ... ending at most this far [m] (a car's length and depth noise) ...
+  float side_length_per_height = 3.0f; // ... or this many times its height (trucks, buses) behind the group's nearest stixel ...
+  float side_top_tolerance = 0.15f;    // ... with its top within this share of the group's height joins it; 0 strips = off
   float tower_min_height_m = 0.0f;     // a post in a hedge / on a kerb: stixels this tall ... (0 = off)
   float tower_height_ratio = 2.0f;     // ... and this many times the group's median height ...
   float tower_max_width_m = 0.8f;      // ... over at most this width leave the group as their own
+  float structure_min_height_m = 0.0f; // stixels this tall (trees, facades) and lower ones never share a group; 0 = off
+  bool split_chains = true;            // a group too deep for one vehicle is cut where a receding run meets a face at its far end
+  bool tower_edges_above_surround = true;  // such a post's box edges are cut on its rows above the hedge only
   float min_obstacle_height_m = 0.25f; // lower groups are dropped
   float max_distance_m = 60.0f;        // farther groups are dropped
   float min_single_stixel_height_m = 0.0f;  // a lone stixel this tall is a hypothesis; 0 = never

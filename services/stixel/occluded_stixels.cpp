@@ -44,6 +44,28 @@ std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const Stere
       if (n > best_n) best_n = n, best_k = k;
     }
     if (best_k < 0) continue;
+    if (p.occluded_nearest) {
+      // The nearest surface above the occluder that fills the minimum height
+      // (what the free space picks for the first layer), not the most populous
+      // one: the upper part of the next car in a parked row is seen in front of
+      // the facade far behind it.
+      auto windowed = [&](int k) {
+        const int w = obstacleHalfWindow(k);
+        int n = 0;
+        for (int j = std::max(0, k - w); j <= std::min(static_cast<int>(hist.size()) - 1, k + w); ++j) n += hist[j];
+        return n;
+      };
+      for (int k = static_cast<int>(hist.size()) - 1; k > best_k; --k) {
+        const int n = windowed(k);
+        if (n * fb / ((u1 - u0) * cam.fy * (k + 0.5)) < fs.min_obstacle_height_m) continue;
+        // Centre the window on that surface: the fullest bin within one window below.
+        int kk = k, nn = n;
+        for (int j = k - 1; j >= std::max(0, k - 2 * obstacleHalfWindow(k)); --j)
+          if (windowed(j) > nn) nn = windowed(j), kk = j;
+        best_k = kk, best_n = nn;
+        break;
+      }
+    }
     const int hw = obstacleHalfWindow(best_k);
     const float dlo = static_cast<float>(std::max(best_k - hw, 0)), dhi = static_cast<float>(best_k + hw + 1);
     // Filled height of the mode [m] must reach the minimum obstacle height.

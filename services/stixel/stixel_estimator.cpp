@@ -78,8 +78,10 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   fs.max_disparity_px = params.max_disparity_px;
   fs.smoothness_m = params.freespace_smoothness_m;
   fs.jump_cap_bins = params.freespace_jump_cap_bins;
+  fs.max_clearance_m = params.max_clearance_m;
   ep.object_depth_tolerance_m = params.object_depth_tolerance_m;
   ep.max_stixel_height_m = params.max_stixel_height_m;
+  ep.occluded_nearest = params.occluded_nearest;
 
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
@@ -95,9 +97,16 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.group_depth_gap_m = params.group_depth_gap_m;
   gp.group_lateral_gap_m = params.group_lateral_gap_m;
   gp.min_stixels_per_hypothesis = params.min_stixels_per_hypothesis;
+  gp.side_max_stixels = params.side_max_stixels;
+  gp.side_max_depth_m = params.side_max_depth_m;
+  gp.side_length_per_height = params.side_length_per_height;
+  gp.side_top_tolerance = params.side_top_tolerance;
   gp.tower_min_height_m = params.tower_min_height_m;
   gp.tower_height_ratio = params.tower_height_ratio;
   gp.tower_max_width_m = params.tower_max_width_m;
+  gp.tower_edges_above_surround = params.tower_edges_above_surround;
+  gp.structure_min_height_m = params.structure_min_height_m;
+  gp.split_chains = params.split_chains;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;

@@ -24,10 +24,18 @@ struct Params {
   float max_pitch_deg = 10.0f;           // ground lines implying a steeper pitch are rejected
   float group_depth_gap_m = 1.5f;        // neighbouring stixels farther apart in depth split a box
   float group_lateral_gap_m = 0.6f;      // neighbouring stixels farther apart sideways split a box
+  int side_max_stixels = 3;              // a vehicle's receding side of this many strips at most ...
+  float side_max_depth_m = 6.0f;         // ... ending at most this far [m] (a car's length and depth noise) ...
+  float side_length_per_height = 3.0f;   // ... or this many times its height (trucks, buses) behind that group's nearest stixel ...
+  float side_top_tolerance = 0.15f;      // ... continuing its top edge joins that group; 0 strips = off
   float tower_min_height_m = 0.8f;       // posts in hedges: stixels this tall (0 = off) ...
   float tower_height_ratio = 2.0f;       // ... this many times their group's median height ...
   float tower_max_width_m = 0.8f;        // ... no wider than this become hypotheses of their own
+  float structure_min_height_m = 4.5f;   // stixels this tall (trees, facades: no road user is) never share a box with lower ones; 0 = off
+  bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
+  bool tower_edges_above_surround = true;// such a post's box edges are cut on its rows above the hedge only
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
+  bool occluded_nearest = true;          // ... the nearest surface above the occluder that fills min_obstacle_height_m, not the fullest
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak
   float max_disparity_px = 256.0f;       // disparities at or above are treated as invalid
@@ -36,6 +44,7 @@ struct Params {
   float min_ground_disparity_span_px = 5.0f;  // ground inliers must span this disparity range
   float freespace_smoothness_m = 0.05f;  // free-space DP cost per disparity bin of boundary jump
   int freespace_jump_cap_bins = 4;       // larger boundary jumps cost no more (object edges)
+  float max_clearance_m = 1.5f;          // free space: evidence not reaching this low over the road hangs over it (tree crowns); 0 = off
   float object_depth_tolerance_m = 1.5f; // height segmentation: pixels within this depth of a stixel belong to it
   float max_stixel_height_m = 10.0f;     // height segmentation looks no higher over the road (poles, trucks)
   float min_single_stixel_height_m = 0.0f; // a lone stixel at least this tall is kept as a hypothesis; 0 = never (measured: more FPs than posts found)

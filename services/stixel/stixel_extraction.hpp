@@ -16,6 +16,7 @@ struct StixelExtractionParams {
   FreeSpaceParams free_space;
   float object_depth_tolerance_m = 1.5f;  // pixels within this depth of the stixel belong to it
   float max_stixel_height_m = 10.0f;      // the top search stops this high over the road
+  bool occluded_nearest = true;           // second layer: the nearest surface filling the minimum height, not the fullest
 };
 
 // Top row by height segmentation. Scanning up from the foot, each pixel of the

@@ -16,9 +16,18 @@ Params readParams(ConfigSection& c) {
   c.get("group_depth_gap_m", p.group_depth_gap_m, 0.0, 100.0);
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
   c.get("occluded_stixels", p.occluded_stixels);
+  c.get("occluded_nearest", p.occluded_nearest);
+  c.get("side_max_stixels", p.side_max_stixels, 0, 100);
+  c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
+  c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);
+  c.get("side_top_tolerance", p.side_top_tolerance, 0.0, 1.0);
   c.get("tower_min_height_m", p.tower_min_height_m, 0.0, 20.0);
   c.get("tower_height_ratio", p.tower_height_ratio, 1.0, 100.0);
   c.get("tower_max_width_m", p.tower_max_width_m, 0.01, 10.0);
+  c.get("tower_edges_above_surround", p.tower_edges_above_surround);
+  c.get("max_clearance_m", p.max_clearance_m, 0.0, 10.0);
+  c.get("structure_min_height_m", p.structure_min_height_m, 0.0, 100.0);
+  c.get("split_chains", p.split_chains);
   c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);
   c.get("max_disparity_px", p.max_disparity_px, 1.0, 4096.0);

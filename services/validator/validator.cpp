@@ -86,7 +86,10 @@ Verdict classify(const Hypothesis& h, const NormalStats* stats, const Params& p)
   if (stats == nullptr) return unvalidated(id, p, "no normals");
   const NormalStats& s = *stats;
   if (!finiteStats(s)) return unvalidated(id, p, "invalid normal statistics");
-  if (s.num_normals == 0) return unvalidated(id, p, "no normals");
+  // Measured, and not one valid normal: as undecided as too few (rule 3), so
+  // a low box (a kerb, a lawn edge) goes; only missing or invalid statistics
+  // (bad input) keep a box regardless of its height.
+  if (s.num_normals == 0) return undecided(h, p, "no normals");
   if (s.num_normals < p.min_normals)
     return undecided(h, p, "only " + std::to_string(s.num_normals) + " normals (< " +
                                   std::to_string(p.min_normals) + ")");

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "free_space.hpp"
@@ -108,6 +109,36 @@ TEST(stixelFreeSpace, NearerObstacleWinsInItsColumns) {
   EXPECT_GE(behind, 8);  // the wall continues above the box
 }
 
+TEST(stixelFreeSpace, ATreeCrownOverThePavementDoesNotHideAPedestrianBelowIt) {
+  // A crown 2.0-2.5 m over the road at 10 m, 2 m wide, and a 1.7 m pedestrian
+  // at 15 m below it: the crown is nearer, but it does not come down to the
+  // road, so the pedestrian (not the crown) bounds the free space there.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  auto paint = [&](float z, double x_left_m, double x_right_m, double bottom_m, double top_m) {
+    const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
+    const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+    const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+    disp(cv::Range(static_cast<int>(std::lround(foot - top_m * px_per_m)),
+                   static_cast<int>(std::lround(foot - bottom_m * px_per_m))),
+         cv::Range(u0, u1))
+        .setTo(static_cast<float>(cam.fx * cam.baseline_m / z));
+  };
+  paint(15.0f, -0.3, 0.3, 0.0, 1.7);
+  paint(10.0f, -1.0, 1.0, 2.0, 2.5);
+  auto pedestrians = [&](const Params& p) {
+    int n = 0;
+    for (const Hypothesis& h : estimateStixels(disp, cam, p).hypotheses)
+      n += std::abs(h.z_m - 15.0f) < 1.0f && h.height_m > 1.4f ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(pedestrians(Params{}), 1);
+  Params off;
+  off.max_clearance_m = 0.0f;
+  EXPECT_EQ(pedestrians(off), 0) << "without the clearance the crown takes the pedestrian's strips";
+}
+
 TEST(stixelGrouping, SplitsTwoBoxesAtDifferentDepthsAndMergesOneWideBox) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
@@ -180,6 +211,37 @@ TEST(stixelOccluded, PersonBehindACarGetsItsOwnHypothesis) {
   EXPECT_EQ(found, 1);
 }
 
+TEST(stixelOccluded, TheNearestSurfaceAboveTheOccluderWinsOverAFullerOneBehindIt) {
+  // A 1 m occluder at 8 m; above it the upper 0.3 m of something at 12 m (the
+  // next car of a parked row), and above that a facade at 30 m that fills more
+  // pixels: the second layer is the thing at 12 m, as the free space would
+  // choose the nearest obstacle.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  const int u0 = static_cast<int>(cam.cx) / 5 * 5 - 20, u1 = u0 + 40;
+  auto paint = [&](float z, double bottom_m, double top_m) {
+    const double foot = footRow(scene, cam, z);
+    disp(cv::Range(static_cast<int>(std::lround(foot - top_m * cam.fy / z)),
+                   static_cast<int>(std::lround(foot - bottom_m * cam.fy / z))),
+         cv::Range(u0, u1))
+        .setTo(static_cast<float>(cam.fx * cam.baseline_m / z));
+  };
+  paint(30.0f, 0.2, 2.4);
+  paint(12.0f, 0.0, 1.0);  // its lower part is hidden by the occluder
+  paint(8.0f, 0.0, 1.0);
+  auto secondLayerDepth = [&](const Params& p) {
+    float z = 0;
+    for (const Stixel& s : estimateStixels(disp, cam, p).stixels)
+      if (s.u >= u0 && s.u + s.width <= u1 && s.depth_m > 9.0f) z = s.depth_m;
+    return z;
+  };
+  EXPECT_NEAR(secondLayerDepth(Params{}), 12.0f, 0.5f);
+  Params fullest;
+  fullest.occluded_nearest = false;
+  EXPECT_NEAR(secondLayerDepth(fullest), 30.0f, 2.0f) << "the fullest surface is the facade";
+}
+
 TEST(stixelGrouping, GapsAndMinimumSize) {
   const StereoCamera cam = kittiLikeCamera();
   GroupingParams p;
@@ -226,6 +288,128 @@ TEST(stixelGrouping, APostInAHedgeLeavesTheHedgesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
+  // A tree (trunk and crown, 8 m tall, 3 strips) and a 1.7 m pedestrian
+  // (2 strips) right beside it, both at 15 m: one group by depth.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  p.structure_min_height_m = 4.5f;
+  std::vector<Stixel> st;
+  for (int u = 600; u < 625; u += 5) {
+    Stixel s = makeStixel(cam, u, 15.0f);
+    const float height_m = u < 615 ? 8.0f : 1.7f;
+    s.top_row = s.bottom_row - static_cast<int>(height_m * cam.fy / 15.0f);
+    st.push_back(s);
+  }
+  auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, 615);
+  EXPECT_NEAR(hs[1].height_m, 1.7f, 0.1f);
+  // Off, or a truck (4 m: lower than any tree) beside it: one group.
+  p.structure_min_height_m = 0.0f;
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+  p.structure_min_height_m = 4.5f;
+  for (Stixel& s : st)
+    if (s.u < 615) s.top_row = s.bottom_row - static_cast<int>(4.0f * cam.fy / 15.0f);
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+}
+
+TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
+  // A 0.8 m guard rail 5 m left of the camera, seen from 8 m to 17 m, ends at
+  // a car's rear (1.5 m tall, X -4.7..-3.0 m) at 15.5 m: the rail's far end
+  // and the car are within the grouping gap, so rail and car were one group.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  auto at = [&](int u, float z, float height_m) {
+    Stixel s = makeStixel(cam, u, z);
+    s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
+    return s;
+  };
+  auto column = [&](double x_m, double z_m) { return static_cast<int>(cam.cx + cam.fx * x_m / z_m) / 5 * 5; };
+  std::vector<Stixel> rail, car;
+  for (int u = column(-5.0, 8.0); u < column(-5.0, 17.0); u += 5)
+    rail.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
+  for (int u = rail.back().u + 5; u < column(-3.0, 15.5); u += 5) car.push_back(at(u, 15.5f, 1.5f));
+  std::vector<Stixel> st = rail;
+  st.insert(st.end(), car.begin(), car.end());
+  p.split_chains = false;
+  ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "without the rule rail and car are one box";
+  p.split_chains = true;
+  auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, car.front().u);
+  EXPECT_EQ(hs[1].num_stixels, static_cast<int>(car.size()));
+
+  // A face at the near end of the receding run is not cut (a car's rear and
+  // its own side recede away from each other): a car's rear at 8 m just left
+  // of where the rail starts.
+  std::vector<Stixel> away;
+  for (int u = column(-6.7, 8.0); u < rail.front().u; u += 5) away.push_back(at(u, 8.0f, 1.5f));
+  away.insert(away.end(), rail.begin(), rail.end());
+  EXPECT_EQ(groupStixels(away, cam, p).size(), 1u);
+}
+
+TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
+  // A car's rear (1.5 m tall) at 30 m right of the principal point (6 strips);
+  // its left side, seen at a grazing angle, recedes 2 m per strip towards the
+  // image centre: each side strip is farther than the 1.5 m grouping gap.
+  const StereoCamera cam = kittiLikeCamera();
+  ASSERT_LT(cam.cx, 780.0);
+  GroupingParams p;
+  p.side_max_stixels = 3;
+  auto car = [&](int u, float z, float height_m = 1.5f) {
+    Stixel s = makeStixel(cam, u, z);
+    s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
+    return s;
+  };
+  std::vector<Stixel> body;
+  for (int u = 800; u < 830; u += 5) body.push_back(car(u, 30.0f));
+  auto with = [&](std::vector<Stixel> extra) {
+    extra.insert(extra.end(), body.begin(), body.end());
+    std::sort(extra.begin(), extra.end(), [](const Stixel& a, const Stixel& b) { return a.u < b.u; });
+    return groupStixels(extra, cam, p);
+  };
+  const std::vector<Stixel> side = {car(790, 34.0f), car(795, 32.0f)};
+  auto hs = with(side);
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x, 790);
+  EXPECT_EQ(hs[0].box.w, 40);
+  EXPECT_EQ(hs[0].num_stixels, 8);
+
+  // Off: the side strips are lone stixels and dropped; the box is the rear only.
+  p.side_max_stixels = 0;
+  hs = with(side);
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x, 800);
+  p.side_max_stixels = 3;
+
+  // The same strips on the outward side cannot be the car's side (a side
+  // projects towards the vanishing point): not joined.
+  hs = with({car(830, 32.0f), car(835, 34.0f)});
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x + hs[0].box.w, 830);
+
+  // The next car of a parked row, 6.5 m behind the rear (more than a car's
+  // length): a box of its own.
+  hs = with({car(790, 36.5f), car(795, 36.0f)});
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, 800);
+
+  // Something nearer than the rear, or taller than the car (a pedestrian
+  // beside it), is not its side.
+  hs = with({car(790, 28.0f), car(795, 28.0f)});
+  EXPECT_EQ(hs.size(), 2u);
+  hs = with({car(790, 34.0f, 1.9f), car(795, 32.0f, 1.9f)});
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x, 800);
+
+  // A truck (3.6 m tall) is longer: its side may end 9 m behind its rear.
+  for (Stixel& s : body) s = car(s.u, 30.0f, 3.6f);
+  hs = with({car(790, 39.0f, 3.6f), car(795, 35.0f, 3.6f)});
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x, 790);
+}
+
 TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
   // A 0.15 m post 3 m tall at 15 m with a 0.8 m wide, 0.6 m tall plate at its top.
   const StereoCamera cam = kittiLikeCamera();
@@ -259,6 +443,43 @@ TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
       EXPECT_GT(h.box.x, plate.first + 4) << "without runs the plate is not in the box";
     }
   }
+}
+
+TEST(stixelBoxes, APostInAHedgeIsCutAtItsOwnWidth) {
+  // A 0.15 m post 1.4 m tall in a 0.6 m hedge, 3 m wide, both at 15 m. The
+  // post leaves the hedge's group (splitTowers); below the hedge's top the
+  // columns beside it are at its depth too, so only the rows above the hedge
+  // show its edges.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  const float z = 15.0f, d = static_cast<float>(cam.fx * cam.baseline_m / z);
+  const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
+  auto paint = [&](double x_left_m, double x_right_m, double top_m) {
+    const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+    const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+    const int v0 = static_cast<int>(std::lround(foot - top_m * px_per_m));
+    disp(cv::Range(v0, static_cast<int>(std::lround(foot))), cv::Range(u0, u1)).setTo(d);
+    return std::make_pair(u0, u1);
+  };
+  paint(-1.5, 1.5, 0.6);
+  const auto post = paint(0.02, 0.17, 1.4);
+  auto postBox = [&](const Params& p) {
+    Box best{};
+    for (const Hypothesis& h : estimateStixels(disp, cam, p).hypotheses)
+      if (std::abs(h.z_m - z) < 0.5f && h.height_m > 1.0f) best = h.box;
+    return best;
+  };
+  const Box on = postBox(Params{});
+  ASSERT_GT(on.w, 0) << "the post has a hypothesis of its own";
+  EXPECT_NEAR(on.x, post.first, 1);
+  EXPECT_NEAR(on.x + on.w, post.second, 1);
+  Params off;
+  off.tower_edges_above_surround = false;
+  // Judged on all rows, the hedge beside the post widens its box, and then the
+  // post fills too little of the box's top rows: the top drops to the hedge.
+  const Box wide = postBox(off);
+  EXPECT_TRUE(wide.w == 0 || wide.w > on.w + 3) << wide.x << " " << wide.w;
 }
 
 TEST(stixelReference, FastPathAgreesWithPerColumnReference) {

@@ -120,6 +120,12 @@ TEST(validatorClassify, TooFewOrInvalidNormalsAreUnvalidated) {
   none.num_samples = 100;
   none.density = 0;
   EXPECT_EQ(classify(hyp(6), &none, Params{}).reason, "unvalidated: no normals");
+  EXPECT_TRUE(classify(hyp(6), &none, Params{}).kept);
+  // Measured but empty, and low (a kerb): removed like a box with too few normals.
+  const Verdict low = classify(hyp(6, 0.4f), &none, Params{});
+  EXPECT_FALSE(low.kept);
+  EXPECT_EQ(low.reason, "unvalidated: no normals, lower than 0.60 m");
+  EXPECT_TRUE(classify(hyp(6, 0.4f), nullptr, Params{}).kept) << "no statistics at all (bad input) stays kept";
   NormalStats nan = stats(6, 100, 0.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f);
   const Verdict v = classify(hyp(6), &nan, Params{});
   EXPECT_EQ(v.label, "unvalidated");
