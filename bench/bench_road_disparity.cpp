@@ -5,7 +5,8 @@
 //
 //   bench_road_disparity [--scene urban] [--frames 8] [--stride 2]
 //                        [--matcher nerv_sgm --matcher sgbm ...] [--p1 7 --p2 90]
-//                        [--no-subpixel] [--max-depth 30]
+//                        [--no-subpixel] [--max-depth 30] [--census W H]
+//                        [--road-census W H] [--road-census-from SHARE]
 //                        [--snv "{key: value, ...}"] [--cache DIR] [--pose-only]
 //
 // --snv: snv_extrinsic keys (as in the service config) for the estimator;
@@ -152,7 +153,11 @@ int main(int argc, char** argv) {
     else if (a == "--census") {
       base.census_width = std::atoi(next());
       base.census_height = std::atoi(next());
-    } else if (a == "--median") median = std::atoi(next());
+    } else if (a == "--road-census") {
+      base.road_census_width = std::atoi(next());
+      base.road_census_height = std::atoi(next());
+    } else if (a == "--road-census-from") base.road_census_from = std::atof(next());
+    else if (a == "--median") median = std::atoi(next());
     else if (a == "--max-depth") max_depth = std::atof(next());
     else {
       std::fprintf(stderr, "unknown argument %s\n", a.c_str());

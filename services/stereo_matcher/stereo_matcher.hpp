@@ -35,6 +35,13 @@ struct Params {
   // nerv_sgm
   int census_width = 9;            // center-symmetric census window (odd); (w * h - 1) / 2 <= 32 bits
   int census_height = 7;
+  // Rows from road_census_from (share of the image height, counted from the top) down
+  // use a flat window instead: there a vehicle camera sees mostly road, whose disparity
+  // grows ~0.3 px per row, and a 7-row window spanning +-1 px of it flattened the road
+  // (pitch +0.2 deg in snv_extrinsic); 3 rows do not (docs/stereo.md "Road accuracy").
+  int road_census_width = 13;      // census window of the road band (odd, <= 32 pairs)
+  int road_census_height = 3;
+  double road_census_from = 0.72;  // first row of the road band / image height; 1 = no band
   int sgm_p1 = 7;                  // penalty for a disparity change of 1 [census bits]
   int sgm_p2 = 90;                 // penalty for larger changes [census bits]; bits + p2 <= 255
   bool subpixel = true;            // equiangular fit on the aggregated cost; false: integer disparities

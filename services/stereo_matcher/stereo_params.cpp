@@ -1,6 +1,8 @@
 // Configuration of the stereo matcher: keys, ranges and cross-key checks.
 #include "stereo_matcher.hpp"
 
+#include <algorithm>
+
 namespace nerv::stereo {
 
 namespace {
@@ -31,12 +33,17 @@ void checkParams(const Params& p, const std::string& path) {
     throw ConfigError(key(path, "bm_block_size") + " = " + std::to_string(p.bm_block_size) +
                       " is not odd and >= 5");
   if (p.p2 <= p.p1) throw ConfigError(key(path, "p2") + " must be larger than p1");
-  if (p.census_width % 2 == 0 || p.census_height % 2 == 0 || p.census_width < 3 ||
-      p.census_height < 1 || (p.census_width * p.census_height - 1) / 2 > 32)
-    throw ConfigError(key(path, "census_width") + " x census_height = " +
-                      std::to_string(p.census_width) + "x" + std::to_string(p.census_height) +
-                      " must be odd and hold at most 32 symmetric pairs");
-  const int max_cost = (p.census_width * p.census_height - 1) / 2;
+  auto checkWindow = [&](const char* width_key, int w, int h) {
+    if (w % 2 == 0 || h % 2 == 0 || w < 3 || h < 1 || (w * h - 1) / 2 > 32)
+      throw ConfigError(key(path, width_key) + " x height = " + std::to_string(w) + "x" +
+                        std::to_string(h) + " must be odd and hold at most 32 symmetric pairs");
+  };
+  checkWindow("census_width", p.census_width, p.census_height);
+  checkWindow("road_census_width", p.road_census_width, p.road_census_height);
+  if (!(p.road_census_from >= 0.0 && p.road_census_from <= 1.0))
+    throw ConfigError(key(path, "road_census_from") + " must be within 0..1");
+  const int max_cost = std::max((p.census_width * p.census_height - 1) / 2,
+                                (p.road_census_width * p.road_census_height - 1) / 2);
   if (p.sgm_p1 < 0 || p.sgm_p2 <= p.sgm_p1 || max_cost + p.sgm_p2 > 255)
     throw ConfigError(key(path, "sgm_p2") + " = " + std::to_string(p.sgm_p2) +
                       " must exceed sgm_p1 and keep census bits (" + std::to_string(max_cost) +
@@ -62,6 +69,9 @@ Params readParams(ConfigSection& c) {
   c.get("wls_sigma", p.wls_sigma, 0.01, 100.0);
   c.get("census_width", p.census_width, 3, 15);
   c.get("census_height", p.census_height, 1, 15);
+  c.get("road_census_width", p.road_census_width, 3, 31);
+  c.get("road_census_height", p.road_census_height, 1, 15);
+  c.get("road_census_from", p.road_census_from, 0.0, 1.0);
   c.get("sgm_p1", p.sgm_p1, 0, 254);
   c.get("sgm_p2", p.sgm_p2, 1, 255);
   c.get("subpixel", p.subpixel);

@@ -1,6 +1,8 @@
 // nerv_sgm against a slow, obviously correct reference of the same census cost
 // and 4-path aggregation; SIMD against scalar; known-disparity and occlusion scenes.
 #include <gtest/gtest.h>
+
+#include <tuple>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -53,8 +55,18 @@ std::vector<uint32_t> referenceCensus(const cv::Mat& img, int ww, int wh) {
 
 cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p) {
   const int H = left.rows, W = left.cols, D = p.num_disparities;
-  const auto cl = referenceCensus(left, p.census_width, p.census_height);
-  const auto cr = referenceCensus(right, p.census_width, p.census_height);
+  // rows from the road band down take the road window's codes
+  const int road_row = p.road_census_from >= 1.0 ? H : static_cast<int>(std::lround(p.road_census_from * H));
+  auto census = [&](const cv::Mat& img) {
+    auto codes = referenceCensus(img, p.census_width, p.census_height);
+    const auto road = referenceCensus(img, p.road_census_width, p.road_census_height);
+    for (int y = road_row; y < H; ++y)
+      std::copy(road.begin() + static_cast<long>(y) * W, road.begin() + static_cast<long>(y + 1) * W,
+                codes.begin() + static_cast<long>(y) * W);
+    return codes;
+  };
+  const auto cl = census(left);
+  const auto cr = census(right);
   auto at = [&](int y, int x, int d) { return (static_cast<size_t>(y) * W + x) * D + d; };
   std::vector<int> C(static_cast<size_t>(H) * W * D);
   for (int y = 0; y < H; ++y)
@@ -105,10 +117,11 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
       disparity.at<float>(y, x) = static_cast<float>(best + p.min_disparity);
     }
   // no census within half a window of the border: no measurement there
-  const int rw = p.census_width / 2, rh = p.census_height / 2;
+  const int rw = (road_row < H ? std::max(p.census_width, p.road_census_width) : p.census_width) / 2;
+  const int top = p.census_height / 2, bottom = p.census_height / 2;  // the main window's band, also under the road window
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
-      if (y < rh || y >= H - rh || x < rw || x >= W - rw) disparity.at<float>(y, x) = 0.0f;
+      if (y < top || y >= H - bottom || x < rw || x >= W - rw) disparity.at<float>(y, x) = 0.0f;
   return disparity;
 }
 
@@ -187,16 +200,19 @@ TEST(stereoSgm, CensusMatchesReference) {
 
 TEST(stereoSgm, MatchesReferenceIntegerDisparities) {
   // D = 32 runs the AVX2 path (where built), D = 48 the scalar fallback; min_disparity shifts.
-  for (const auto& [D, min_d] : std::vector<std::pair<int, int>>{{32, 0}, {48, 3}, {64, 5}}) {
+  // road_census_from 0.6: rows 24.. use the flat road window; 1: one window everywhere.
+  for (const auto& [D, min_d, road_from] :
+       std::vector<std::tuple<int, int, double>>{{32, 0, 0.6}, {48, 3, 0.6}, {64, 5, 1.0}, {32, 0, 1.0}}) {
     const cv::Mat right = texture(40, 96, 2, 1.2);
     const cv::Mat left = shifted(right, 9.0);
-    const Params p = plainParams(D, min_d);
+    Params p = plainParams(D, min_d);
+    p.road_census_from = road_from;
     cv::Mat disparity;
     createOwnSgm(p)->compute(left, right, disparity);
     cv::Mat expected = referenceSgm(left, right, p);
     expected.setTo(0.0f, expected <= 0.0f);  // nerv encodes disparity 0 as invalid
     expected = referenceMedianFill(expected);
-    ASSERT_EQ(cv::countNonZero(disparity != expected), 0) << "D " << D << " min " << min_d;
+    ASSERT_EQ(cv::countNonZero(disparity != expected), 0) << "D " << D << " min " << min_d << " road " << road_from;
     EXPECT_GT(cv::countNonZero(disparity == 9.0f), disparity.total() / 2);  // not vacuous
   }
 }
