@@ -58,6 +58,11 @@ TEST(stereoConfig, BadValuesNameTheKey) {
   EXPECT_NE(configError("{num_disparities: 40}").find("stereo_matcher.num_disparities"), std::string::npos);
   EXPECT_NE(configError("{algorithm: magic}").find("stereo_matcher.algorithm"), std::string::npos);
   EXPECT_NE(configError("{sgm_p2: 230}").find("stereo_matcher.sgm_p2"), std::string::npos);
+  EXPECT_NE(configError("{road_census_width: 12}").find("stereo_matcher.road_census_width"), std::string::npos);
+  EXPECT_NE(configError("{road_census_width: 15, road_census_height: 5}").find("stereo_matcher.road_census_width"),
+            std::string::npos);  // 37 pairs > 32 bits
+  EXPECT_NE(configError("{road_census_from: 1.5}").find("stereo_matcher.road_census_from"), std::string::npos);
+  EXPECT_EQ(configError("{road_census_from: 1}"), "");  // no road band
   EXPECT_NE(configError("{downscale: 3}").find("stereo_matcher.downscale"), std::string::npos);
   EXPECT_NE(configError("{census_width: 9, census_height: 9}").find("stereo_matcher.census_width"), std::string::npos);
   EXPECT_NE(configError("{census_width: 8}").find("stereo_matcher.census_width"), std::string::npos);
