@@ -44,12 +44,6 @@ void parallelTasks(int threads, int tasks, F&& body) {
   });
 }
 
-// First row of the road band (rows below it use the road census window).
-int roadCensusRow(const Params& p, int rows) {
-  return p.road_census_from >= 1.0 ? rows
-                                   : std::clamp(static_cast<int>(std::lround(p.road_census_from * rows)), 0, rows);
-}
-
 // Marks the outer `border_x` columns, `top` rows and `bottom` rows invalid.
 void invalidateBorder(cv::Mat& disparity, cv::Mat& confidence, int border_x, int top, int bottom) {
   const int rows = disparity.rows, cols = disparity.cols;

@@ -52,6 +52,9 @@ struct Params {
   int boundary_snap_px = -1;
 };
 
+// First row of nerv_sgm's road band in an image of `rows` rows (rows when there is none).
+int roadCensusRow(const Params& params, int rows);
+
 // Declares and reads the keys of the stereo_matcher section; ConfigError names the bad key.
 Params readParams(ConfigSection& section);
 // Throws ConfigError (naming the key under `path`) when the combination is unusable.

@@ -2,6 +2,7 @@
 #include "stereo_matcher.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace nerv::stereo {
 
@@ -49,6 +50,12 @@ void checkParams(const Params& p, const std::string& path) {
                       " must exceed sgm_p1 and keep census bits (" + std::to_string(max_cost) +
                       ") + sgm_p2 <= 255 (8-bit path costs)");
   if (p.threads < 1) throw ConfigError(key(path, "threads") + " must be >= 1");
+}
+
+int roadCensusRow(const Params& p, int rows) {
+  return p.road_census_from >= 1.0
+             ? rows
+             : std::clamp(static_cast<int>(std::lround(p.road_census_from * rows)), 0, rows);
 }
 
 Params readParams(ConfigSection& c) {
