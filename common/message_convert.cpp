@@ -2,6 +2,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -30,6 +31,19 @@ stereo_calibration_t toCalibration(const StereoCamera& cam) {
   c.baseline_m = cam.baseline_m;
   c.rectified = true;
   return c;
+}
+
+RawStereoCalibration toRawCalibration(const stereo_calibration_t& c) {
+  RawStereoCalibration raw;
+  raw.width = c.width;
+  raw.height = c.height;
+  std::copy(c.left_K, c.left_K + 9, raw.left_K.begin());
+  std::copy(c.left_D, c.left_D + 5, raw.left_D.begin());
+  std::copy(c.right_K, c.right_K + 9, raw.right_K.begin());
+  std::copy(c.right_D, c.right_D + 5, raw.right_D.begin());
+  std::copy(c.R, c.R + 9, raw.R.begin());
+  std::copy(c.T, c.T + 3, raw.T.begin());
+  return raw;
 }
 
 image_t encodeImage(const cv::Mat& image, const std::string& encoding, int jpeg_quality) {
