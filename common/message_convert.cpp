@@ -75,8 +75,17 @@ std::string decodeImage(const image_t& msg, cv::Mat& out) {
     return "";
   }
   if (msg.encoding == "png" || msg.encoding == "jpeg") {
-    out = cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    // imdecode throws on an empty buffer (and a codec may on a corrupt stream).
+    try {
+      out = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      out.release();
+    }
     if (out.empty()) return msg.encoding + " stream cannot be decoded";
+    // The matchers take 8-bit gray (BGR and BGRA are converted): a 16-bit PNG
+    // used to reach them and throw.
+    if (out.depth() != CV_8U || (out.channels() != 1 && out.channels() != 3 && out.channels() != 4))
+      return msg.encoding + " stream is not 8-bit gray, BGR or BGRA";
     if (out.cols != msg.width || out.rows != msg.height)
       return msg.encoding + " stream is " + std::to_string(out.cols) + "x" +
              std::to_string(out.rows) + ", header says " + std::to_string(msg.width) + "x" +
@@ -118,7 +127,11 @@ std::string decodeDisparity(const disparity_t& msg, cv::Mat& disparity) {
     if (msg.data.size() != 2ull * msg.width * msg.height) return "u16le disparity has the wrong size";
     fixed = cv::Mat(msg.height, msg.width, CV_16U, const_cast<uint8_t*>(msg.data.data()));
   } else if (msg.encoding == "png16") {
-    fixed = cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    try {
+      fixed = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      fixed.release();
+    }
     if (fixed.empty() || fixed.type() != CV_16U) return "png16 disparity cannot be decoded";
     if (fixed.cols != msg.width || fixed.rows != msg.height) return "png16 disparity size differs from header";
   } else {

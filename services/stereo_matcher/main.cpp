@@ -44,8 +44,15 @@ int serve(ServiceConfig& config) {
     RawStereoCalibration raw;
     if (!frame.calib.rectified) {
       raw = toRawCalibration(frame.calib);
-      if (const std::string why = raw.problem(); !why.empty())
-        return node.error("bad_calibration", what + why);
+      std::string why = raw.problem();
+      if (why.empty()) {
+        try {
+          rectifier.get(raw);  // computes and caches the maps, or finds them unusable
+        } catch (const std::invalid_argument& e) {
+          why = e.what();
+        }
+      }
+      if (!why.empty()) return node.error("bad_calibration", what + why);
     }
     std::string why = decodeImage(frame.left, left);
     if (why.empty()) why = decodeImage(frame.right, right);

@@ -126,7 +126,10 @@ std::string stixelsOutputBug(const stixels_t& out) {
   if (!finite({g.residual_px})) return "published STIXELS: ground residual not finite";
   for (const auto& s : out.stixels)
     if (!finite({s.disparity, s.depth_m, s.base_x_m, s.base_y_m, s.base_z_m}))
-      return "published STIXELS: stixel at u=" + std::to_string(s.u) + " has non-finite numbers";
+      return "published STIXELS: stixel at u=" + std::to_string(s.u) + " has non-finite numbers (d " +
+             std::to_string(s.disparity) + ", z " + std::to_string(s.depth_m) + ", base " +
+             std::to_string(s.base_x_m) + " " + std::to_string(s.base_y_m) + " " +
+             std::to_string(s.base_z_m) + ")";
   return "";
 }
 
@@ -236,26 +239,24 @@ Scene makeScene() {
   return s;
 }
 
-// The scene's disparity with the road kept on a few bottom rows only: the
-// v-disparity fit is weak, so the stixel stage falls back to the EXTRINSICS prior.
-const cv::Mat& weakGroundDisparity() {
-  static const cv::Mat d = [] {
-    const Scene& s = scene();
-    cv::Mat out = s.disparity.clone();
-    const cv::Mat flat = stixel::renderDisparity(stixel::RoadScene{1.65f, 1.0f, true, {}}, s.camera);
-    for (int v = 0; v < out.rows - 8; ++v)
-      for (int u = 0; u < out.cols; ++u)
-        if (out.at<float>(v, u) == flat.at<float>(v, u)) out.at<float>(v, u) = 0;  // road pixel
-    return out;
-  }();
-  return d;
-}
-
 }  // namespace
 
 const Scene& scene() {
   static const Scene s = makeScene();
   return s;
+}
+
+const cv::Mat& weakGroundDisparity() {
+  static const cv::Mat d = [] {
+    const Scene& s = scene();
+    cv::Mat out = s.disparity.clone();
+    const cv::Mat flat = stixel::renderDisparity(stixel::RoadScene{1.65f, 1.0f, true, {}}, s.camera);
+    for (int v = 0; v < out.rows; ++v)
+      for (int u = 0; u < out.cols; ++u)
+        if (out.at<float>(v, u) == flat.at<float>(v, u)) out.at<float>(v, u) = 0;  // road pixel
+    return out;
+  }();
+  return d;
 }
 
 Limits fuzzLimits() {
@@ -313,15 +314,24 @@ std::vector<std::vector<uint8_t>> seedMessages(const std::string& type) {
   return out;
 }
 
-Outcome receiveStereoFrame(const uint8_t* data, size_t size) {
+static Outcome receiveStereoFrameUnguarded(const uint8_t* data, size_t size) {
   stereo_frame_t frame;
   if (!decodeLikeNode(frame, data, size)) return reject("decode_failed", "does not decode");
   // stereo_matcher/main.cpp, in order.
   if (Problem p = checkStereoFrame(frame, fuzzLimits())) return reject(p);
   RawStereoCalibration raw;
+  Rectifier rectifier;
   if (!frame.calib.rectified) {
     raw = toRawCalibration(frame.calib);
-    if (const std::string why = raw.problem(); !why.empty()) return reject("bad_calibration", why);
+    std::string why = raw.problem();
+    if (why.empty()) {
+      try {
+        rectifier.get(raw);
+      } catch (const std::invalid_argument& e) {
+        why = e.what();
+      }
+    }
+    if (!why.empty()) return reject("bad_calibration", why);
   }
   cv::Mat left, right;
   std::string why = decodeImage(frame.left, left);
@@ -331,7 +341,6 @@ Outcome receiveStereoFrame(const uint8_t* data, size_t size) {
       left.rows != frame.calib.height)
     return reject("size_mismatch", "decoded images do not match the calibration size");
   return processed([&]() -> std::string {
-    Rectifier rectifier;
     cv::Mat left_rect, right_rect, disparity, confidence;
     disparity_t out;
     out.header = frame.header;
@@ -364,7 +373,7 @@ Outcome receiveStereoFrame(const uint8_t* data, size_t size) {
   });
 }
 
-Outcome receiveDisparity(const uint8_t* data, size_t size) {
+static Outcome receiveDisparityUnguarded(const uint8_t* data, size_t size) {
   disparity_t msg;
   if (!decodeLikeNode(msg, data, size)) return reject("decode_failed", "does not decode");
   // stixel/main.cpp (snv_extrinsic/main.cpp runs the same check and decode).
@@ -385,7 +394,7 @@ Outcome receiveDisparity(const uint8_t* data, size_t size) {
   });
 }
 
-Outcome receiveStixels(const uint8_t* data, size_t size) {
+static Outcome receiveStixelsUnguarded(const uint8_t* data, size_t size) {
   stixels_t msg;
   if (!decodeLikeNode(msg, data, size)) return reject("decode_failed", "does not decode");
   // snv_extrinsic/main.cpp and validator/main.cpp run the same check.
@@ -405,7 +414,7 @@ Outcome receiveStixels(const uint8_t* data, size_t size) {
   });
 }
 
-Outcome receiveSurfaceNormals(const uint8_t* data, size_t size) {
+static Outcome receiveSurfaceNormalsUnguarded(const uint8_t* data, size_t size) {
   surface_normals_t msg;
   if (!decodeLikeNode(msg, data, size)) return reject("decode_failed", "does not decode");
   if (Problem p = checkSurfaceNormals(msg)) return reject(p);
@@ -413,7 +422,7 @@ Outcome receiveSurfaceNormals(const uint8_t* data, size_t size) {
   return processed([&] { return verdictsBug(hypothesesOf(scene().stixels), statsOf(msg)); });
 }
 
-Outcome receiveExtrinsics(const uint8_t* data, size_t size) {
+static Outcome receiveExtrinsicsUnguarded(const uint8_t* data, size_t size) {
   extrinsics_t e;
   if (!decodeLikeNode(e, data, size)) return reject("decode_failed", "does not decode");
   // stixel/main.cpp (defaults: min_prior_confidence 0.3, max_prior_age_frames 30).
@@ -437,5 +446,23 @@ Outcome receiveExtrinsics(const uint8_t* data, size_t size) {
     return stixelsOutputBug(stixels);
   });
 }
+
+// Decoding and the checks must not throw either (in a service the exception
+// would be counted as processing_failed instead of the problem's own counter).
+template <class F>
+Outcome guardedPath(F&& path, const uint8_t* data, size_t size) {
+  try {
+    return path(data, size);
+  } catch (const std::exception& e) {
+    Outcome o;
+    o.bug = std::string("exception while decoding or checking: ") + e.what();
+    return o;
+  }
+}
+Outcome receiveStereoFrame(const uint8_t* data, size_t size) { return guardedPath(receiveStereoFrameUnguarded, data, size); }
+Outcome receiveDisparity(const uint8_t* data, size_t size) { return guardedPath(receiveDisparityUnguarded, data, size); }
+Outcome receiveStixels(const uint8_t* data, size_t size) { return guardedPath(receiveStixelsUnguarded, data, size); }
+Outcome receiveSurfaceNormals(const uint8_t* data, size_t size) { return guardedPath(receiveSurfaceNormalsUnguarded, data, size); }
+Outcome receiveExtrinsics(const uint8_t* data, size_t size) { return guardedPath(receiveExtrinsicsUnguarded, data, size); }
 
 }  // namespace nerv::fuzz

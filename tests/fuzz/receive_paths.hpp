@@ -53,6 +53,10 @@ std::vector<uint8_t> encode(const T& msg) {
   return bytes;
 }
 
+// The scene's boxes without the road: no v-disparity fit, so the stixel stage
+// falls back to the EXTRINSICS prior.
+const cv::Mat& weakGroundDisparity();
+
 // The limits the paths run with (small: absurd sizes are cheap to reject).
 Limits fuzzLimits();
 

@@ -17,7 +17,10 @@
 #include <new>
 #include <random>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "receive_paths.hpp"
+#include "stixel_estimator.hpp"
 
 using namespace nerv;
 using namespace nerv::fuzz;
@@ -113,8 +116,26 @@ void mutateCalibration(stereo_calibration_t& c, std::mt19937& rng) {
 }
 
 // True: the size field is to be set to size_field in the encoded bytes.
+// Another kind of PNG of the image's size: 16-bit gray, 16-bit BGR, BGR, BGRA.
+void recodeAsOtherPng(image_t& im, std::mt19937& rng) {
+  cv::Mat gray(im.height > 0 && im.height <= 4096 ? im.height : 8, im.width > 0 && im.width <= 4096 ? im.width : 8,
+               CV_8U);
+  cv::randu(gray, 0, 256);
+  cv::Mat other;
+  switch (rng() % 4) {
+    case 0: gray.convertTo(other, CV_16U, 257); break;
+    case 1: cv::merge(std::vector<cv::Mat>{gray, gray, gray}, other), other.convertTo(other, CV_16U); break;
+    case 2: cv::merge(std::vector<cv::Mat>{gray, gray, gray}, other); break;
+    default: cv::merge(std::vector<cv::Mat>{gray, gray, gray, gray}, other);
+  }
+  cv::imencode(".png", other, im.data);
+  im.size = static_cast<int32_t>(im.data.size());
+  im.encoding = "png";
+}
+
 bool mutateImage(image_t& im, std::mt19937& rng, int32_t& size_field) {
-  switch (rng() % 7) {
+  switch (rng() % 8) {
+    case 7: recodeAsOtherPng(im, rng); break;
     case 0: im.width = pickInt(rng); break;
     case 1: im.height = pickInt(rng); break;
     case 2: im.channels = pickInt(rng); break;
@@ -293,6 +314,10 @@ Tally fuzzType(const std::string& type, const Path& path,
   auto run = [&](const Bytes& b, const std::string& what) {
     const Outcome o = path(b.data(), b.size());
     EXPECT_TRUE(o.bug.empty()) << type << " " << what << ": " << o.bug;
+    if (!o.bug.empty() && std::getenv("NERV_FUZZ_SAVE")) {  // keep the input for a regression test
+      const std::string path = std::string(std::getenv("NERV_FUZZ_SAVE")) + "/" + type + "_" + what.substr(what.rfind(' ') + 1);
+      if (FILE* f = std::fopen(path.c_str(), "wb")) std::fwrite(b.data(), 1, b.size(), f), std::fclose(f);
+    }
     EXPECT_TRUE(o.accepted || !o.counter.empty()) << type << " " << what;
     if (o.accepted) ++t.accepted;
     else ++t.rejected, ++t.counters[o.counter];
@@ -319,23 +344,23 @@ Tally fuzzType(const std::string& type, const Path& path,
 }  // namespace
 
 TEST(commonMessageFuzz, StereoFrameMutants) {
-  fuzzType("stereo_frame", receiveStereoFrame, mutateStereoFrame, 150, 1);
+  fuzzType("stereo_frame", receiveStereoFrame, mutateStereoFrame, 400, 1);
 }
 
 TEST(commonMessageFuzz, DisparityMutants) {
-  fuzzType("disparity", receiveDisparity, mutateDisparity, 200, 2);
+  fuzzType("disparity", receiveDisparity, mutateDisparity, 1000, 2);
 }
 
 TEST(commonMessageFuzz, StixelsMutants) {
-  fuzzType("stixels", receiveStixels, mutateStixels, 400, 3);
+  fuzzType("stixels", receiveStixels, mutateStixels, 2000, 3);
 }
 
 TEST(commonMessageFuzz, SurfaceNormalsMutants) {
-  fuzzType("surface_normals", receiveSurfaceNormals, mutateSurfaceNormals, 600, 4);
+  fuzzType("surface_normals", receiveSurfaceNormals, mutateSurfaceNormals, 3000, 4);
 }
 
 TEST(commonMessageFuzz, ExtrinsicsMutants) {
-  fuzzType("extrinsics", receiveExtrinsics, mutateExtrinsics, 300, 5);
+  fuzzType("extrinsics", receiveExtrinsics, mutateExtrinsics, 1000, 5);
 }
 
 // The scene really exercises the paths: ROIs for snv and the validator, a pose
@@ -345,6 +370,13 @@ TEST(commonMessageFuzz, SceneHasRoisAndAValidPose) {
   EXPECT_GE(s.stixels.num_rois, 1);
   EXPECT_TRUE(s.stixels.ground.valid);
   EXPECT_EQ(s.normals.num_rois, s.stixels.num_rois);
+  EXPECT_TRUE(s.extrinsics.valid) << s.extrinsics.status;
+  EXPECT_GE(s.extrinsics.confidence, 0.3f);
+  // The extrinsics path's disparity has too little road for a fit of its own.
+  EXPECT_FALSE(stixel::estimateStixels(weakGroundDisparity(), s.camera, stixel::Params{}).ground.valid);
+  stixel::GroundPrior prior{true, 1.0f, 0.0f, 1.65f};
+  EXPECT_EQ(stixel::estimateStixels(weakGroundDisparity(), s.camera, stixel::Params{}, prior).ground.source,
+            "extrinsics_prior");
 }
 
 // --- regressions: the minimal inputs of what the mutations found -------------
@@ -394,5 +426,88 @@ TEST(commonMessageFuzz, PoseWithAFarSeqIsNoPrior) {
     const Outcome o = receiveExtrinsics(b.data(), b.size());
     EXPECT_TRUE(o.accepted) << seq;
     EXPECT_EQ(o.bug, "") << seq;
+  }
+}
+// A 16-bit (or otherwise non-8-bit) PNG passed decodeImage and made the matcher
+// throw (counted as processing_failed): now it is a bad_image.
+TEST(commonMessageFuzz, SixteenBitPngFrameIsBadImage) {
+  const Scene& s = scene();
+  stereo_frame_t f = s.frame;
+  cv::Mat wide;
+  s.left.convertTo(wide, CV_16U, 257);
+  f.left.encoding = f.right.encoding = "png";
+  cv::imencode(".png", wide, f.left.data);
+  f.right.data = f.left.data;
+  f.left.size = f.right.size = static_cast<int32_t>(f.left.data.size());
+  const Bytes b = encode(f);
+  const Outcome o = receiveStereoFrame(b.data(), b.size());
+  EXPECT_EQ(o.counter, "bad_image");
+  EXPECT_EQ(o.bug, "");
+}
+
+// cv::imdecode throws on an empty buffer: an empty png/png16 stream reached it.
+TEST(commonMessageFuzz, EmptyCompressedStreamIsRejectedNotThrown) {
+  const Scene& s = scene();
+  stereo_frame_t f = s.frame;
+  f.left.encoding = "png";
+  f.left.data.clear();
+  f.left.size = 0;
+  Bytes b = encode(f);
+  Outcome o = receiveStereoFrame(b.data(), b.size());
+  EXPECT_EQ(o.counter, "bad_image");
+  EXPECT_EQ(o.bug, "");
+  disparity_t d = s.disparity_msg;
+  d.encoding = "png16";
+  d.data.clear();
+  d.size = 0;
+  b = encode(d);
+  o = receiveDisparity(b.data(), b.size());
+  EXPECT_EQ(o.counter, "bad_disparity");
+  EXPECT_EQ(o.bug, "");
+}
+
+// A finite but absurd principal point (a flipped exponent bit: cx = -2.6e305)
+// passed the check and the stixel stage published an infinite foot point.
+TEST(commonMessageFuzz, AbsurdCalibrationIsBadCalibration) {
+  const Scene& s = scene();
+  for (auto mutate : std::vector<std::function<void(stereo_calibration_t&)>>{
+           [](stereo_calibration_t& c) { c.cx = -2.63334e305; },
+           [](stereo_calibration_t& c) { c.cy = 1e30; },
+           [](stereo_calibration_t& c) { c.fx = c.fy = 1e300; },
+           [](stereo_calibration_t& c) { c.baseline_m = 1e300; }}) {
+    disparity_t d = s.disparity_msg;
+    mutate(d.calib);
+    Bytes b = encode(d);
+    Outcome o = receiveDisparity(b.data(), b.size());
+    EXPECT_EQ(o.counter, "bad_calibration") << o.message;
+    EXPECT_EQ(o.bug, "");
+    stereo_frame_t f = s.frame;
+    mutate(f.calib);
+    b = encode(f);
+    o = receiveStereoFrame(b.data(), b.size());
+    EXPECT_EQ(o.counter, "bad_calibration") << o.message;
+    EXPECT_EQ(o.bug, "");
+  }
+}
+
+// A raw calibration that passes RawStereoCalibration::problem() but that OpenCV
+// cannot rectify (the baseline's square underflows: stereoRectify asserted) or
+// whose rectified camera is unusable (huge distortion) was processed and threw,
+// or published a DISPARITY with a NaN focal length.
+TEST(commonMessageFuzz, UnrectifiableRawCalibrationIsBadCalibration) {
+  const std::vector<Bytes> seeds = seedMessages("stereo_frame");
+  stereo_frame_t raw;
+  ASSERT_GE(raw.decode(seeds[3].data(), 0, static_cast<int>(seeds[3].size())), 0);
+  ASSERT_FALSE(raw.calib.rectified);
+  for (auto mutate : std::vector<std::function<void(stereo_calibration_t&)>>{
+           [](stereo_calibration_t& c) { c.T[0] = -1e-200; },
+           [](stereo_calibration_t& c) { c.left_D[0] = 1e30f; },
+           [](stereo_calibration_t& c) { c.right_K[4] = 1e30; }}) {
+    stereo_frame_t f = raw;
+    mutate(f.calib);
+    const Bytes b = encode(f);
+    const Outcome o = receiveStereoFrame(b.data(), b.size());
+    EXPECT_EQ(o.counter, "bad_calibration") << o.message;
+    EXPECT_EQ(o.bug, "");
   }
 }
