@@ -511,3 +511,32 @@ TEST(commonMessageFuzz, UnrectifiableRawCalibrationIsBadCalibration) {
     EXPECT_EQ(o.bug, "");
   }
 }
+
+// Finite but impossible values that decided an answer downstream.
+TEST(commonMessageFuzz, ImpossibleSharesBoxesAndConfidenceAreBadValue) {
+  const Scene& s = scene();
+  ASSERT_FALSE(s.normals.rois.empty());
+  // A ground share of 1e30 removed the obstacle as "ground".
+  surface_normals_t n = s.normals;
+  n.rois[0].ground_fraction = 1e30f;
+  Bytes b = encode(n);
+  Outcome o = receiveSurfaceNormals(b.data(), b.size());
+  EXPECT_EQ(o.counter, "bad_value");
+  n = s.normals;
+  n.rois[0].num_normals = n.rois[0].num_samples + 1;
+  b = encode(n);
+  EXPECT_EQ(receiveSurfaceNormals(b.data(), b.size()).counter, "bad_value");
+  // A box outside every accepted image was kept as an unvalidated detection.
+  stixels_t st = s.stixels;
+  st.rois[0].x = INT32_MAX - 5;
+  b = encode(st);
+  EXPECT_EQ(receiveStixels(b.data(), b.size()).counter, "bad_value");
+  st.rois[0].x = -100;
+  b = encode(st);
+  EXPECT_EQ(receiveStixels(b.data(), b.size()).counter, "bad_value");
+  // A NaN confidence passed "confidence < min_prior_confidence" and became the prior.
+  extrinsics_t e = s.extrinsics;
+  e.confidence = std::numeric_limits<float>::quiet_NaN();
+  b = encode(e);
+  EXPECT_EQ(receiveExtrinsics(b.data(), b.size()).counter, "bad_value");
+}
