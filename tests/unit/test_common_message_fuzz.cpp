@@ -540,3 +540,17 @@ TEST(commonMessageFuzz, ImpossibleSharesBoxesAndConfidenceAreBadValue) {
   b = encode(e);
   EXPECT_EQ(receiveExtrinsics(b.data(), b.size()).counter, "bad_value");
 }
+
+// snv's groundRows cast the row where the STIXELS ground model reaches 30 m to
+// int before clamping it: a tiny slope put it at -1.3e42 (undefined behaviour,
+// found by fuzz_stixels under UBSan; this input traps there without the fix).
+TEST(commonMessageFuzz, GroundModelFarOutsideTheImageIsClamped) {
+  stixels_t st = scene().stixels;
+  st.ground.valid = true;
+  st.ground.vd_slope = 1e-30f;
+  st.ground.vd_intercept = 1e12f;
+  const Bytes b = encode(st);
+  const Outcome o = receiveStixels(b.data(), b.size());
+  EXPECT_TRUE(o.accepted);
+  EXPECT_EQ(o.bug, "");
+}
