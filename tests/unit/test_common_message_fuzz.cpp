@@ -25,9 +25,16 @@
 using namespace nerv;
 using namespace nerv::fuzz;
 
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-// Largest single allocation since reset (operator new is replaced in this program).
+// Largest single allocation since reset (operator new is replaced in this
+// program; not under AddressSanitizer, which has its own).
 static size_t g_largest_allocation = 0;
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define NERV_ASAN 1
+#endif
+#endif
+#ifndef NERV_ASAN
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(size_t n) {
   if (n > g_largest_allocation) g_largest_allocation = n;
   if (void* p = std::malloc(n ? n : 1)) return p;
@@ -35,6 +42,7 @@ void* operator new(size_t n) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, size_t) noexcept { std::free(p); }
+#endif
 
 namespace {
 
