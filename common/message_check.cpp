@@ -143,8 +143,8 @@ Problem checkSurfaceNormals(const surface_normals_t& msg) {
                  s.normal_y, s.normal_z, s.pitch_deg, s.yaw_deg, s.tilt_from_ground_deg}))
       return problem("bad_value",
                      "surface normals: roi " + std::to_string(s.roi_id) + " has non-finite numbers");
-  // Shares outside 0..1 would decide a verdict (a corrupt ground share removed
-  // an obstacle as "ground").
+  // Shares outside 0..1 and counts that do not add up fed the verdicts (a
+  // ground share of 1e30 reads as all ground).
   auto share = [](float v) { return v >= 0 && v <= 1; };
   for (const auto& s : msg.rois)
     if (!share(s.density) || !share(s.ground_fraction) || !share(s.object_fraction) ||

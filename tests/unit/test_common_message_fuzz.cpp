@@ -524,7 +524,7 @@ TEST(commonMessageFuzz, UnrectifiableRawCalibrationIsBadCalibration) {
 TEST(commonMessageFuzz, ImpossibleSharesBoxesAndConfidenceAreBadValue) {
   const Scene& s = scene();
   ASSERT_FALSE(s.normals.rois.empty());
-  // A ground share of 1e30 removed the obstacle as "ground".
+  // A ground share of 1e30 reached the validator (it reads as all ground).
   surface_normals_t n = s.normals;
   n.rois[0].ground_fraction = 1e30f;
   Bytes b = encode(n);
