@@ -4,9 +4,66 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 namespace nerv {
+
+namespace {
+
+uint32_t bigEndian(const std::vector<uint8_t>& b, size_t at, int bytes) {
+  uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v = (v << 8) | b[at + i];
+  return v;
+}
+
+// Width and height a PNG (IHDR) or JPEG (SOFn) stream declares, read before
+// decoding: a small stream of zeros can declare, and decode to, up to 2^30 pixels.
+bool declaredSize(const std::vector<uint8_t>& b, int64_t& width, int64_t& height) {
+  static const uint8_t png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (b.size() >= 24 && std::equal(png, png + 8, b.begin())) {
+    if (std::memcmp(b.data() + 12, "IHDR", 4) != 0) return false;
+    width = bigEndian(b, 16, 4);
+    height = bigEndian(b, 20, 4);
+    return true;
+  }
+  if (b.size() < 4 || b[0] != 0xFF || b[1] != 0xD8) return false;
+  size_t i = 2;
+  while (i + 4 <= b.size()) {
+    if (b[i] != 0xFF) return false;
+    const uint8_t marker = b[i + 1];
+    if (marker == 0xFF) {  // fill byte
+      ++i;
+      continue;
+    }
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // no length field
+      i += 2;
+      continue;
+    }
+    const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (sof) {
+      if (i + 9 > b.size()) return false;
+      height = bigEndian(b, i + 5, 2);
+      width = bigEndian(b, i + 7, 2);
+      return true;
+    }
+    i += 2 + bigEndian(b, i + 2, 2);
+  }
+  return false;
+}
+
+// "" when the stream declares the message's size, else why not.
+std::string declaredSizeProblem(const std::vector<uint8_t>& data, const std::string& what, int width,
+                                int height) {
+  int64_t w = 0, h = 0;
+  if (!declaredSize(data, w, h)) return what + " stream has no readable size header";
+  if (w != width || h != height)
+    return what + " stream declares " + std::to_string(w) + "x" + std::to_string(h) +
+           ", header says " + std::to_string(width) + "x" + std::to_string(height);
+  return "";
+}
+
+}  // namespace
 
 StereoCamera toCamera(const stereo_calibration_t& c) {
   StereoCamera cam;
@@ -75,6 +132,8 @@ std::string decodeImage(const image_t& msg, cv::Mat& out) {
     return "";
   }
   if (msg.encoding == "png" || msg.encoding == "jpeg") {
+    if (std::string why = declaredSizeProblem(msg.data, msg.encoding, msg.width, msg.height); !why.empty())
+      return why;
     // imdecode throws on an empty buffer (and a codec may on a corrupt stream).
     try {
       out = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
@@ -127,6 +186,8 @@ std::string decodeDisparity(const disparity_t& msg, cv::Mat& disparity) {
     if (msg.data.size() != 2ull * msg.width * msg.height) return "u16le disparity has the wrong size";
     fixed = cv::Mat(msg.height, msg.width, CV_16U, const_cast<uint8_t*>(msg.data.data()));
   } else if (msg.encoding == "png16") {
+    if (std::string why = declaredSizeProblem(msg.data, "png16", msg.width, msg.height); !why.empty())
+      return why;
     try {
       fixed = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception&) {

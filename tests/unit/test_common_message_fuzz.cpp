@@ -562,3 +562,31 @@ TEST(commonMessageFuzz, GroundModelFarOutsideTheImageIsClamped) {
   EXPECT_TRUE(o.accepted);
   EXPECT_EQ(o.bug, "");
 }
+
+// A compressed stream was decoded before its size was compared with the message's:
+// a few kB of PNG declaring 4096x4096 decoded to 16 MB first (up to 2^30 pixels
+// pass OpenCV's own limit). Now the declared size is read from the header first.
+TEST(commonMessageFuzz, CompressedStreamDeclaringAnotherSizeIsRejectedBeforeDecoding) {
+  const Scene& s = scene();
+  const cv::Mat big(4096, 4096, CV_8U, cv::Scalar(0));
+  stereo_frame_t f = s.frame;
+  f.left = encodeImage(big, "png");
+  f.left.width = s.camera.width;
+  f.left.height = s.camera.height;
+  cv::Mat out;
+  EXPECT_EQ(decodeImage(f.left, out), "png stream declares 4096x4096, header says 192x96");
+  f.left = encodeImage(big, "jpeg");
+  f.left.width = s.camera.width;
+  f.left.height = s.camera.height;
+  EXPECT_EQ(decodeImage(f.left, out), "jpeg stream declares 4096x4096, header says 192x96");
+  const Bytes b = encode(f);
+  EXPECT_EQ(receiveStereoFrame(b.data(), b.size()).counter, "bad_image");
+  disparity_t d = s.disparity_msg;
+  encodeDisparity(cv::Mat(4096, 4096, CV_32F, cv::Scalar(0)), "png16", d);
+  d.width = s.camera.width;
+  d.height = s.camera.height;
+  EXPECT_EQ(decodeDisparity(d, out), "png16 stream declares 4096x4096, header says 192x96");
+  // The real streams declare their own size.
+  EXPECT_EQ(decodeImage(encodeImage(s.left, "png"), out), "");
+  EXPECT_EQ(decodeImage(encodeImage(s.left, "jpeg"), out), "");
+}
