@@ -124,8 +124,10 @@ void Node::subscribe(const std::string& base_channel, std::function<void(const T
   sub->node = this;
   sub->on_message = [this, handler](const lcm::ReceiveBuffer* rbuf, const std::string& ch) {
     T msg;
-    // Generated decoders return < 0 on a wrong fingerprint or short buffer, but
-    // a corrupt array length makes them throw (std::vector): both are rejections.
+    // Generated decoders return < 0 on a wrong fingerprint, a short buffer or an
+    // array count longer than the buffer (cmake/LcmDecoderBounds.cmake: before
+    // that, a corrupt count allocated gigabytes or threw from std::vector). A
+    // throw is still a rejection.
     bool decoded = false;
     try {
       decoded = msg.decode(rbuf->data, 0, rbuf->data_size) >= 0;

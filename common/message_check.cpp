@@ -1,6 +1,7 @@
 #include "message_check.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "message_convert.hpp"
@@ -121,9 +122,15 @@ Problem checkStixels(const stixels_t& msg, const Limits& limits) {
   for (const auto& r : msg.rois) {
     if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.disparity}))
       return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has non-finite numbers");
-    if (r.w <= 0 || r.h <= 0 || r.w > limits.max_width || r.h > limits.max_height)
+    // Boxes lie in the image: one outside every accepted image came from a
+    // corrupt message (it would be kept as an unvalidated detection).
+    if (r.w <= 0 || r.h <= 0 || r.x < 0 || r.y < 0 || int64_t{r.x} + r.w > limits.max_width ||
+        int64_t{r.y} + r.h > limits.max_height)
       return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has box " +
-                                      std::to_string(r.w) + "x" + std::to_string(r.h));
+                                      std::to_string(r.w) + "x" + std::to_string(r.h) + " at " +
+                                      std::to_string(r.x) + "," + std::to_string(r.y) +
+                                      ", outside 0,0.." + std::to_string(limits.max_width) + "," +
+                                      std::to_string(limits.max_height));
   }
   return {};
 }
@@ -136,12 +143,25 @@ Problem checkSurfaceNormals(const surface_normals_t& msg) {
                  s.normal_y, s.normal_z, s.pitch_deg, s.yaw_deg, s.tilt_from_ground_deg}))
       return problem("bad_value",
                      "surface normals: roi " + std::to_string(s.roi_id) + " has non-finite numbers");
+  // Shares outside 0..1 and counts that do not add up fed the verdicts (a
+  // ground share of 1e30 reads as all ground).
+  auto share = [](float v) { return v >= 0 && v <= 1; };
+  for (const auto& s : msg.rois)
+    if (!share(s.density) || !share(s.ground_fraction) || !share(s.object_fraction) ||
+        !share(s.error_fraction) || s.num_samples < 0 || s.num_normals < 0 ||
+        s.num_normals > s.num_samples)
+      return problem("bad_value", "surface normals: roi " + std::to_string(s.roi_id) +
+                                      " has shares outside 0..1 or counts that do not add up");
   return {};
 }
 
 Problem checkExtrinsics(const extrinsics_t& msg) {
   if (!finite({msg.pitch_deg, msg.roll_deg, msg.height_m}))
     return problem("bad_value", "extrinsics: pitch/roll/height not finite");
+  // A NaN confidence passed "confidence < minimum" and made the pose a prior.
+  if (!(msg.confidence >= 0 && msg.confidence <= 1))
+    return problem("bad_value", "extrinsics: confidence " + std::to_string(msg.confidence) +
+                                    " is not in 0..1");
   return {};
 }
 

@@ -2,10 +2,68 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 namespace nerv {
+
+namespace {
+
+uint32_t bigEndian(const std::vector<uint8_t>& b, size_t at, int bytes) {
+  uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v = (v << 8) | b[at + i];
+  return v;
+}
+
+// Width and height a PNG (IHDR) or JPEG (SOFn) stream declares, read before
+// decoding: a small stream of zeros can declare, and decode to, up to 2^30 pixels.
+bool declaredSize(const std::vector<uint8_t>& b, int64_t& width, int64_t& height) {
+  static const uint8_t png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (b.size() >= 24 && std::equal(png, png + 8, b.begin())) {
+    if (std::memcmp(b.data() + 12, "IHDR", 4) != 0) return false;
+    width = bigEndian(b, 16, 4);
+    height = bigEndian(b, 20, 4);
+    return true;
+  }
+  if (b.size() < 4 || b[0] != 0xFF || b[1] != 0xD8) return false;
+  size_t i = 2;
+  while (i + 4 <= b.size()) {
+    if (b[i] != 0xFF) return false;
+    const uint8_t marker = b[i + 1];
+    if (marker == 0xFF) {  // fill byte
+      ++i;
+      continue;
+    }
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // no length field
+      i += 2;
+      continue;
+    }
+    const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (sof) {
+      if (i + 9 > b.size()) return false;
+      height = bigEndian(b, i + 5, 2);
+      width = bigEndian(b, i + 7, 2);
+      return true;
+    }
+    i += 2 + bigEndian(b, i + 2, 2);
+  }
+  return false;
+}
+
+// "" when the stream declares the message's size, else why not.
+std::string declaredSizeProblem(const std::vector<uint8_t>& data, const std::string& what, int width,
+                                int height) {
+  int64_t w = 0, h = 0;
+  if (!declaredSize(data, w, h)) return what + " stream has no readable size header";
+  if (w != width || h != height)
+    return what + " stream declares " + std::to_string(w) + "x" + std::to_string(h) +
+           ", header says " + std::to_string(width) + "x" + std::to_string(height);
+  return "";
+}
+
+}  // namespace
 
 StereoCamera toCamera(const stereo_calibration_t& c) {
   StereoCamera cam;
@@ -30,6 +88,19 @@ stereo_calibration_t toCalibration(const StereoCamera& cam) {
   c.baseline_m = cam.baseline_m;
   c.rectified = true;
   return c;
+}
+
+RawStereoCalibration toRawCalibration(const stereo_calibration_t& c) {
+  RawStereoCalibration raw;
+  raw.width = c.width;
+  raw.height = c.height;
+  std::copy(c.left_K, c.left_K + 9, raw.left_K.begin());
+  std::copy(c.left_D, c.left_D + 5, raw.left_D.begin());
+  std::copy(c.right_K, c.right_K + 9, raw.right_K.begin());
+  std::copy(c.right_D, c.right_D + 5, raw.right_D.begin());
+  std::copy(c.R, c.R + 9, raw.R.begin());
+  std::copy(c.T, c.T + 3, raw.T.begin());
+  return raw;
 }
 
 image_t encodeImage(const cv::Mat& image, const std::string& encoding, int jpeg_quality) {
@@ -61,8 +132,19 @@ std::string decodeImage(const image_t& msg, cv::Mat& out) {
     return "";
   }
   if (msg.encoding == "png" || msg.encoding == "jpeg") {
-    out = cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    if (std::string why = declaredSizeProblem(msg.data, msg.encoding, msg.width, msg.height); !why.empty())
+      return why;
+    // imdecode throws on an empty buffer (and a codec may on a corrupt stream).
+    try {
+      out = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      out.release();
+    }
     if (out.empty()) return msg.encoding + " stream cannot be decoded";
+    // The matchers take 8-bit gray (BGR and BGRA are converted): a 16-bit PNG
+    // used to reach them and throw.
+    if (out.depth() != CV_8U || (out.channels() != 1 && out.channels() != 3 && out.channels() != 4))
+      return msg.encoding + " stream is not 8-bit gray, BGR or BGRA";
     if (out.cols != msg.width || out.rows != msg.height)
       return msg.encoding + " stream is " + std::to_string(out.cols) + "x" +
              std::to_string(out.rows) + ", header says " + std::to_string(msg.width) + "x" +
@@ -104,7 +186,13 @@ std::string decodeDisparity(const disparity_t& msg, cv::Mat& disparity) {
     if (msg.data.size() != 2ull * msg.width * msg.height) return "u16le disparity has the wrong size";
     fixed = cv::Mat(msg.height, msg.width, CV_16U, const_cast<uint8_t*>(msg.data.data()));
   } else if (msg.encoding == "png16") {
-    fixed = cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    if (std::string why = declaredSizeProblem(msg.data, "png16", msg.width, msg.height); !why.empty())
+      return why;
+    try {
+      fixed = msg.data.empty() ? cv::Mat() : cv::imdecode(msg.data, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      fixed.release();
+    }
     if (fixed.empty() || fixed.type() != CV_16U) return "png16 disparity cannot be decoded";
     if (fixed.cols != msg.width || fixed.rows != msg.height) return "png16 disparity size differs from header";
   } else {

@@ -13,12 +13,15 @@
 #include "nerv/stixels_t.hpp"
 #include "nerv/surface_normals_t.hpp"
 #include "perception_types.hpp"
+#include "rectification.hpp"
 #include "stereo_camera.hpp"
 
 namespace nerv {
 
 StereoCamera toCamera(const stereo_calibration_t& calib);
 stereo_calibration_t toCalibration(const StereoCamera& cam);
+// The raw block (rectified = false) of a calibration message.
+RawStereoCalibration toRawCalibration(const stereo_calibration_t& calib);
 
 // Images: "gray8" | "bgr8" raw, or "png" | "jpeg" compressed.
 image_t encodeImage(const cv::Mat& image, const std::string& encoding, int jpeg_quality = 95);

@@ -49,10 +49,16 @@ Rectification computeRectification(const RawStereoCalibration& raw) {
   const cv::Mat D2(1, 5, CV_64F, const_cast<double*>(raw.right_D.data()));
   const cv::Vec3d T(raw.T.data());
   cv::Mat Q;
-  cv::stereoRectify(K1, D1, K2, D2, size, R, T, r.R1, r.R2, r.P1, r.P2, Q,
-                    cv::CALIB_ZERO_DISPARITY, 0.0, size);
-  cv::initUndistortRectifyMap(K1, D1, r.R1, r.P1, size, CV_16SC2, r.left_map1, r.left_map2);
-  cv::initUndistortRectifyMap(K2, D2, r.R2, r.P2, size, CV_16SC2, r.right_map1, r.right_map2);
+  // Numbers that pass problem() can still defeat OpenCV (a baseline whose square
+  // underflows) or give a camera no rig has: both are unusable calibrations.
+  try {
+    cv::stereoRectify(K1, D1, K2, D2, size, R, T, r.R1, r.R2, r.P1, r.P2, Q,
+                      cv::CALIB_ZERO_DISPARITY, 0.0, size);
+    cv::initUndistortRectifyMap(K1, D1, r.R1, r.P1, size, CV_16SC2, r.left_map1, r.left_map2);
+    cv::initUndistortRectifyMap(K2, D2, r.R2, r.P2, size, CV_16SC2, r.right_map1, r.right_map2);
+  } catch (const cv::Exception& e) {
+    throw std::invalid_argument("raw calibration cannot be rectified: " + e.err);
+  }
   // Horizontal rig: P2 = [f 0 cx f*Tx'; ...] with Tx' = -baseline in T's unit (m).
   r.camera.width = raw.width;
   r.camera.height = raw.height;
@@ -61,6 +67,8 @@ Rectification computeRectification(const RawStereoCalibration& raw) {
   r.camera.cx = r.P1.at<double>(0, 2);
   r.camera.cy = r.P1.at<double>(1, 2);
   r.camera.baseline_m = std::fabs(r.P2.at<double>(0, 3) / r.P2.at<double>(0, 0));
+  if (const std::string why = r.camera.problem(); !why.empty())
+    throw std::invalid_argument("rectified camera: " + why);
   return r;
 }
 

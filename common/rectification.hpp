@@ -41,14 +41,15 @@ struct Rectification {
 };
 
 // Computes the rectification (alpha = 0: only valid pixels, no black border).
-// Throws std::invalid_argument when raw.problem() is not empty.
+// Throws std::invalid_argument when raw.problem() is not empty, OpenCV cannot
+// rectify it or the rectified camera is unusable (StereoCamera::problem()).
 Rectification computeRectification(const RawStereoCalibration& raw);
 
 // Cache of the last few rectifications, keyed by the whole calibration.
 class Rectifier {
  public:
   explicit Rectifier(std::size_t capacity = 4) : capacity_(capacity) {}
-  // Maps for this calibration (computed on first use).
+  // Maps for this calibration (computed on first use; throws as computeRectification).
   const Rectification& get(const RawStereoCalibration& raw);
   // Rectifies both images (any type remap accepts). Returns the rectified camera.
   const StereoCamera& rectify(const RawStereoCalibration& raw, const cv::Mat& left,

@@ -18,7 +18,9 @@ struct StereoCamera {
   double cx = 0, cy = 0;    // principal point [px]
   double baseline_m = 0;    // optical centre distance [m]
 
-  // Empty string when usable, otherwise one line naming the first problem.
+  // Empty string when usable (positive size, focal lengths 1..1e6 px, principal
+  // point within one image size of the image, baseline (0, 100] m), otherwise
+  // one line naming the first problem.
   std::string problem() const;
 
   // Z = fx*B/d, X = (u-cx)*B/d, Y = (v-cy)*B/d * fx/fy (fy = fx for KITTI). d must be > 0.

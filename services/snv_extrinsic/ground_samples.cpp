@@ -16,16 +16,18 @@ bool usableModel(const GroundModel& m) {
 
 cv::Range groundRows(const StereoCamera& cam, const GroundModel& model,
                      const GroundSampleParams& params) {
-  int first;
+  double first;
   if (usableModel(model)) {
     // Row where the model's ground is max_depth_m away.
     const double d_far = cam.fx * cam.baseline_m / params.max_depth_m;
-    first = static_cast<int>(std::floor((d_far - model.vd_intercept) / model.vd_slope));
+    first = std::floor((d_far - model.vd_intercept) / model.vd_slope);
   } else {
-    first = static_cast<int>(std::ceil(cam.cy)) + params.lower_margin_px;
+    first = std::ceil(cam.cy) + params.lower_margin_px;
   }
-  first = std::clamp(first, 0, cam.height);
-  return cv::Range(first, cam.height);
+  // Clamped before the cast: a corrupt STIXELS ground model puts this row far
+  // outside int (the cast was undefined behaviour).
+  const int row = std::isnan(first) ? 0 : static_cast<int>(std::clamp(first, 0.0, static_cast<double>(cam.height)));
+  return cv::Range(row, cam.height);
 }
 
 bool isGroundCandidate(int v, float d, const StereoCamera& cam, const GroundModel& model,

@@ -21,19 +21,6 @@ cv::Mat toGray(const cv::Mat& image) {
   return gray;
 }
 
-RawStereoCalibration rawCalibration(const stereo_calibration_t& c) {
-  RawStereoCalibration raw;
-  raw.width = c.width;
-  raw.height = c.height;
-  std::copy(c.left_K, c.left_K + 9, raw.left_K.begin());
-  std::copy(c.left_D, c.left_D + 5, raw.left_D.begin());
-  std::copy(c.right_K, c.right_K + 9, raw.right_K.begin());
-  std::copy(c.right_D, c.right_D + 5, raw.right_D.begin());
-  std::copy(c.R, c.R + 9, raw.R.begin());
-  std::copy(c.T, c.T + 3, raw.T.begin());
-  return raw;
-}
-
 int serve(ServiceConfig& config) {
   const stereo::Params params = stereo::readParams(config.section());
   std::string encoding = "u16le";
@@ -56,9 +43,16 @@ int serve(ServiceConfig& config) {
       return node.error(p.counter, what + p.message);
     RawStereoCalibration raw;
     if (!frame.calib.rectified) {
-      raw = rawCalibration(frame.calib);
-      if (const std::string why = raw.problem(); !why.empty())
-        return node.error("bad_calibration", what + why);
+      raw = toRawCalibration(frame.calib);
+      std::string why = raw.problem();
+      if (why.empty()) {
+        try {
+          rectifier.get(raw);  // computes and caches the maps, or finds them unusable
+        } catch (const std::invalid_argument& e) {
+          why = e.what();
+        }
+      }
+      if (!why.empty()) return node.error("bad_calibration", what + why);
     }
     std::string why = decodeImage(frame.left, left);
     if (why.empty()) why = decodeImage(frame.right, right);

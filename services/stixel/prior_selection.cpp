@@ -30,7 +30,11 @@ void PriorSelection::offer(int64_t seq, const GroundPrior& prior) {
 GroundPrior PriorSelection::forFrame(int64_t seq) const {
   const Entry* best = nullptr;
   for (const Entry& e : entries_) {
-    if (e.seq >= seq || seq - e.seq > max_age_frames_) continue;
+    // Unsigned age: seq - e.seq overflows for far-apart seqs (a corrupt header),
+    // and the wrapped negative age passed as recent.
+    if (e.seq >= seq ||
+        static_cast<uint64_t>(seq) - static_cast<uint64_t>(e.seq) > static_cast<uint64_t>(max_age_frames_))
+      continue;
     if (!best || e.seq > best->seq) best = &e;
   }
   return best ? best->prior : GroundPrior{};

@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   settle();
   lcm.publish("DISPARITY", garbage.data(), garbage.size());
   settle();
-  // 1b. the right type with a corrupt array length (makes the generated decoder throw)
+  // 1b. the right type with a corrupt array length (decode fails: cmake/LcmDecoderBounds.cmake)
   {
     stereo_frame_t c = frame(99);
     c.left.encoding = "png";
