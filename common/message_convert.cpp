@@ -399,4 +399,33 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v) {
   return d;
 }
 
+stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, const std::vector<Stixel>& stixels,
+                         const std::vector<Hypothesis>& hypotheses, float processing_ms) {
+  stixels_t out;
+  out.header = header;
+  out.ground = toMessage(ground);
+  for (const auto& s : stixels) out.stixels.push_back(toMessage(s));
+  for (const auto& h : hypotheses) out.rois.push_back(toMessage(h));
+  out.num_stixels = static_cast<int32_t>(out.stixels.size());
+  out.num_rois = static_cast<int32_t>(out.rois.size());
+  out.processing_ms = processing_ms;
+  return out;
+}
+
+surface_normals_t surfaceNormalsMessage(const header_t& header, int interval_px, int ground_samples,
+                                        const float ground_normal[3], const std::vector<NormalStats>& rois,
+                                        float processing_ms) {
+  surface_normals_t out;
+  out.header = header;
+  out.interval_px = interval_px;
+  out.ground_samples = ground_samples;
+  out.ground_normal_x = ground_normal[0];
+  out.ground_normal_y = ground_normal[1];
+  out.ground_normal_z = ground_normal[2];
+  for (const auto& s : rois) out.rois.push_back(toMessage(s));
+  out.num_rois = static_cast<int32_t>(out.rois.size());
+  out.processing_ms = processing_ms;
+  return out;
+}
+
 }  // namespace nerv

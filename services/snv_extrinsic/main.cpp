@@ -33,16 +33,8 @@ int serve(ServiceConfig& config) {
     ext.header = dmsg.header;
     fillExtrinsics(result.pose, ext);
     ext.processing_ms = ms;
-    surface_normals_t normals;
-    normals.header = dmsg.header;
-    normals.interval_px = result.interval_px;
-    normals.ground_samples = result.ground_samples;
-    normals.ground_normal_x = result.ground_normal[0];
-    normals.ground_normal_y = result.ground_normal[1];
-    normals.ground_normal_z = result.ground_normal[2];
-    for (const auto& s : result.rois) normals.rois.push_back(toMessage(s));
-    normals.num_rois = static_cast<int32_t>(normals.rois.size());
-    normals.processing_ms = ms;
+    const surface_normals_t normals = surfaceNormalsMessage(dmsg.header, result.interval_px, result.ground_samples,
+                                                            result.ground_normal, result.rois, ms);
     node.publish("EXTRINSICS", ext);
     node.publish("SURFACE_NORMALS", normals);
     node.countOut(dmsg.header.utime, ms);

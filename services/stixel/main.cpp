@@ -41,15 +41,9 @@ int serve(ServiceConfig& config) {
     const auto start = std::chrono::steady_clock::now();
     const stixel::StixelResult result = stixel::estimateStixels(disparity, toCamera(msg.calib), params,
                                                                        priors.forFrame(msg.header.seq));
-    stixels_t out;
-    out.header = msg.header;
-    out.ground = toMessage(result.ground);
-    for (const auto& s : result.stixels) out.stixels.push_back(toMessage(s));
-    for (const auto& h : result.hypotheses) out.rois.push_back(toMessage(h));
-    out.num_stixels = static_cast<int32_t>(out.stixels.size());
-    out.num_rois = static_cast<int32_t>(out.rois.size());
-    out.processing_ms = std::chrono::duration<float, std::milli>(
-                            std::chrono::steady_clock::now() - start).count();
+    const stixels_t out = stixelsMessage(
+        msg.header, result.ground, result.stixels, result.hypotheses,
+        std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count());
     if (!result.ground.valid) node.error("no_ground", "frame " + std::to_string(msg.header.seq) + ": no ground found");
     node.publish("STIXELS", out);
     node.countOut(msg.header.utime, out.processing_ms);

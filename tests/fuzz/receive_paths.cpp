@@ -71,17 +71,9 @@ cv::Mat toGray(const cv::Mat& image) {  // as stereo_matcher/main.cpp
   return gray;
 }
 
-// The STIXELS message stixel/main.cpp makes of a result.
+// The STIXELS message stixel/main.cpp makes of a result (same builder).
 stixels_t stixelsMessage(const header_t& header, const stixel::StixelResult& result) {
-  stixels_t out;
-  out.header = header;
-  out.ground = toMessage(result.ground);
-  for (const auto& s : result.stixels) out.stixels.push_back(toMessage(s));
-  for (const auto& h : result.hypotheses) out.rois.push_back(toMessage(h));
-  out.num_stixels = static_cast<int32_t>(out.stixels.size());
-  out.num_rois = static_cast<int32_t>(out.rois.size());
-  out.processing_ms = 1;
-  return out;
+  return nerv::stixelsMessage(header, result.ground, result.stixels, result.hypotheses, 1);
 }
 
 // snv_extrinsic/main.cpp's process(): the decoded disparity and the stixels of one frame.
@@ -96,16 +88,8 @@ void snvMessages(const cv::Mat& disparity, const disparity_t& dmsg, const stixel
   ext.header = dmsg.header;
   fillExtrinsics(result.pose, ext);
   ext.processing_ms = 1;
-  normals = surface_normals_t{};
-  normals.header = dmsg.header;
-  normals.interval_px = result.interval_px;
-  normals.ground_samples = result.ground_samples;
-  normals.ground_normal_x = result.ground_normal[0];
-  normals.ground_normal_y = result.ground_normal[1];
-  normals.ground_normal_z = result.ground_normal[2];
-  for (const auto& s : result.rois) normals.rois.push_back(toMessage(s));
-  normals.num_rois = static_cast<int32_t>(normals.rois.size());
-  normals.processing_ms = 1;
+  normals = surfaceNormalsMessage(dmsg.header, result.interval_px, result.ground_samples, result.ground_normal,
+                                  result.rois, 1);
 }
 
 // --- what an accepted input's outputs must satisfy ---------------------------
