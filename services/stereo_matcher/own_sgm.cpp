@@ -47,12 +47,19 @@ void parallelTasks(int threads, int tasks, F&& body) {
 // Marks the outer `border_x` columns, `top` rows and `bottom` rows invalid.
 void invalidateBorder(cv::Mat& disparity, cv::Mat& confidence, int border_x, int top, int bottom) {
   const int rows = disparity.rows, cols = disparity.cols;
+  const int bx = std::min(std::max(border_x, 0), cols);
   for (int y = 0; y < rows; ++y) {
     float* d = disparity.ptr<float>(y);
     float* c = confidence.ptr<float>(y);
-    const bool whole_row = y < top || y >= rows - bottom;
-    for (int x = 0; x < cols; ++x)
-      if (whole_row || x < border_x || x >= cols - border_x) d[x] = c[x] = 0.0f;
+    if (y < top || y >= rows - bottom) {  // whole row
+      std::fill(d, d + cols, 0.0f);
+      std::fill(c, c + cols, 0.0f);
+      continue;
+    }
+    std::fill(d, d + bx, 0.0f);  // only the side columns
+    std::fill(c, c + bx, 0.0f);
+    std::fill(d + cols - bx, d + cols, 0.0f);
+    std::fill(c + cols - bx, c + cols, 0.0f);
   }
 }
 
