@@ -96,7 +96,8 @@ class IntegralNormalField {
   bool normalAt(int u, int v, int r, cv::Vec3f& n) const;
   // Chessboard distance of every pixel in the band to the nearest edge (CV_32F, band rows).
   cv::Mat edgeDistance() const;
-  // The band's integral images, (rows + 1) x (cols + 1) (tests): edges (CV_32S) and
+  // The band's integral images, (rows + 1) x (cols + 1) (tests): edges (CV_16U, wrapping
+  // modulo 2^16: box counts of up to 255^2 pixels stay exact) and
   // values (CV_32S holding wrapping uint32 of 256 * value when fixedPoint(), else CV_64F).
   const cv::Mat& edgeIntegral() const { return edge_integral_; }
   const cv::Mat& valueIntegral() const { return value_integral_; }
@@ -112,7 +113,7 @@ class IntegralNormalField {
 
   cv::Mat disparity_;      // the caller's map (header only)
   cv::Mat value_integral_; // CV_32S (uint32, 256 * value) or CV_64F integral, invalid = 0, band rows
-  cv::Mat edge_integral_;  // CV_32S integral of the edge map (1 = edge/invalid), band rows
+  cv::Mat edge_integral_;  // CV_16U (wrapping) integral of the edge map (1 = edge/invalid), band rows
   cv::Mat edge_integral_buffer_, fixed_buffer_, double_buffer_;  // whole-image storage of the above
   bool fixed_point_ = false;
   StereoCamera cam_;
