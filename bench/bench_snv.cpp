@@ -34,6 +34,7 @@
 #include "ground_plane_fit.hpp"
 #include "ground_samples.hpp"
 #include "integral_normals.hpp"
+#include "local_fields.hpp"
 #include "local_normals.hpp"
 #include "lowest_surface.hpp"
 #include "naive_normals.hpp"
@@ -205,16 +206,13 @@ int main(int argc, char** argv) {
     // Local SNV: the integral field over the needed band, ground samples and ROI normals.
     size_t normals_per_frame = 0;
     std::vector<std::vector<GroundSample>> ground(frames.size());
-    IntegralNormalField field;  // kept across frames, as SnvExtrinsicEstimator does
+    LocalFields fields;  // kept across frames, as SnvExtrinsicEstimator does
     const double local = timePerFrame(frames, repeats, [&](const Frame& f) {
-      std::vector<cv::Rect> needed = f.rois;
-      needed.push_back(cv::Rect(0, ground_rows.start, cam.width, ground_rows.size()));
-      const cv::Range band = rowBandFor(needed, cam.height, np.max_radius_px);
-      field.prepare(f.disparity, cam, np, band.start, band.end);
+      fields.prepare(f.disparity, cam, np, ground_rows, f.rois);
       const size_t i = &f - frames.data();
-      ground[i] = selectGroundSamples(field, f.disparity, cam, no_model, gp, ground_rows, k);
+      ground[i] = selectGroundSamples(fields.ground(), f.disparity, cam, no_model, gp, ground_rows, k);
       std::vector<LocalNormal> out;
-      for (const cv::Rect& r : f.rois) localNormalsInRect(field, r, k, out);
+      for (size_t r = 0; r < f.rois.size(); ++r) localNormalsInRect(fields.roi(r), f.rois[r], k, out);
       normals_per_frame = ground[i].size() + out.size();
     });
     // Naive local: the same sample pixels, each box mean summed pixel by pixel.

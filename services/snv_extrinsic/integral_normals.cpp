@@ -176,14 +176,15 @@ void addChunkOffsets(cv::Mat& integral, int rows, int chunks) {
   }
 }
 
-// A rows x cols view of `buffer`, which grows once to the whole image: a field
-// kept across frames then allocates - and page-faults - its ~3 MB once instead
-// of every frame (0.3-0.9 ms of page faults per frame measured when freed
-// memory went back to the system between frames).
-cv::Mat bufferView(cv::Mat& buffer, int rows, int cols, int type, int max_rows) {
-  if (buffer.type() != type || buffer.cols != cols || buffer.rows < rows)
-    buffer.create(std::max(rows, max_rows), cols, type);
-  return buffer.rowRange(0, rows);
+// A continuous rows x cols matrix in `buffer`, which grows to the largest
+// region seen (at least `min_bytes`): a field kept across frames then allocates
+// - and page-faults - its ~3 MB once instead of every frame (0.3-0.9 ms of page
+// faults per frame measured when freed memory went back to the system between
+// frames), whatever the size of each frame's region.
+cv::Mat bufferView(cv::Mat& buffer, int rows, int cols, int type, size_t min_bytes) {
+  const size_t bytes = size_t(rows) * cols * CV_ELEM_SIZE(type);
+  if (buffer.empty() || buffer.total() < bytes) buffer.create(1, static_cast<int>(std::max(bytes, min_bytes)), CV_8U);
+  return cv::Mat(rows, cols, type, buffer.data);
 }
 
 // Box sum from four integral rows/columns, as float.
@@ -198,25 +199,40 @@ inline float boxFloat(const double* a, const double* b, int x0, int x1) {
 
 void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& cam,
                                   const IntegralNormalParams& params, int row_begin, int row_end) {
+  const int r0 = std::clamp(row_begin, 0, disparity.rows);
+  const int r1 = std::clamp(row_end, r0, disparity.rows);
+  prepare(disparity, cam, params, cv::Rect(0, r0, disparity.cols, r1 - r0));
+}
+
+void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& cam,
+                                  const IntegralNormalParams& params, const cv::Rect& region) {
   CV_Assert(disparity.type() == CV_32F);
   disparity_ = disparity;
   cam_ = cam;
   params_ = params;
-  row0_ = std::clamp(row_begin, 0, disparity.rows);
-  row1_ = std::clamp(row_end, row0_, disparity.rows);
+  const cv::Rect r = region & cv::Rect(0, 0, disparity.cols, disparity.rows);
+  row0_ = r.empty() ? 0 : r.y;
+  row1_ = r.empty() ? 0 : r.y + r.height;
+  col0_ = r.empty() ? 0 : r.x;
+  col1_ = r.empty() ? 0 : r.x + r.width;
   fb_ = static_cast<float>(cam.fx * cam.baseline_m);
   inv_fx_ = static_cast<float>(1.0 / cam.fx);
   inv_fy_ = static_cast<float>(1.0 / cam.fy);
 
-  const int rows = row1_ - row0_, cols = disparity.cols;
-  const int all_rows = disparity.rows + 1;
-  edge_integral_ = bufferView(edge_integral_buffer_, rows + 1, cols + 1, CV_16U, all_rows);
+  const int rows = row1_ - row0_, cols = col1_ - col0_;
+  // Storage for the whole image at least, so a full frame after smaller regions reuses it.
+  const size_t image_px = size_t(disparity.rows + 1) * (disparity.cols + 1);
+  edge_integral_ = bufferView(edge_integral_buffer_, rows + 1, cols + 1, CV_16U, image_px * 2);
   edge_integral_.row(0).setTo(0);
   // Fixed point is tried first (one pass); an inexact value falls back to CV_64F.
   bool fixed = params.smooth_disparity;
-  value_integral_ = fixed ? bufferView(fixed_buffer_, rows + 1, cols + 1, CV_32S, all_rows)
-                          : bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, all_rows);
+  value_integral_ = fixed ? bufferView(fixed_buffer_, rows + 1, cols + 1, CV_32S, image_px * 4)
+                          : bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, image_px * 8);
   value_integral_.row(0).setTo(0);
+  if (rows == 0 || cols == 0) {
+    fixed_point_ = fixed;
+    return;
+  }
   std::atomic<bool> inexact{false};
 
   // Edge map, values and their row prefix sums in chunks of consecutive rows,
@@ -229,7 +245,8 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
   cv::parallel_for_(cv::Range(0, chunks), [&](const cv::Range& range) {
     // Locals, not captures: a uchar store could alias a captured value and
     // keep the loops below from vectorising.
-    const int cols = disparity.cols;
+    const int cols = col1_ - col0_;
+    const bool right_edge = col1_ == disparity.cols;  // the region's last column is the image's
     const float jump_px = params.depth_change_px, jump_rel = params.depth_change_rel;
     const bool smooth = params.smooth_disparity;
     const float fb = fb_;
@@ -240,8 +257,8 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
       for (int y = chunkBegin(rows, chunks, chunk), y_end = chunkBegin(rows, chunks, chunk + 1); y < y_end; ++y) {
         const bool accumulate = y > chunkBegin(rows, chunks, chunk);
         const int v = y + row0_;
-        const float* d = disparity.ptr<float>(v);
-        const float* below = v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : d;
+        const float* d = disparity.ptr<float>(v) + col0_;  // region columns from here on
+        const float* below = (v + 1 < disparity.rows ? disparity.ptr<float>(v + 1) : disparity.ptr<float>(v)) + col0_;
         uchar* e = edge.data();
         float* val = value.data();
         // Branch-free so it vectorises. A jump to the right or below marks this
@@ -257,7 +274,7 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
           val[u] = valid ? (smooth ? c : depth) : 0.0f;
         };
         for (int u = 0; u + 1 < cols; ++u) pixel(u, d[u + 1]);
-        if (cols > 0) pixel(cols - 1, d[cols - 1]);
+        pixel(cols - 1, right_edge ? d[cols - 1] : d[cols]);  // the image's edge map, also at the region's side
         uint16_t* edge_row = edge_integral_.ptr<uint16_t>(y + 1);
         const uint16_t* edge_above = accumulate ? edge_integral_.ptr<uint16_t>(y) : nullptr;
         if (fixed) {
@@ -282,12 +299,12 @@ void IntegralNormalField::prepare(const cv::Mat& disparity, const StereoCamera& 
   if (fixed && inexact) {
     // Not a multiple of 1/256 somewhere: exact sums need the CV_64F integral.
     fixed = false;
-    value_integral_ = bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, all_rows);
+    value_integral_ = bufferView(double_buffer_, rows + 1, cols + 1, CV_64F, image_px * 8);
     value_integral_.row(0).setTo(0);
     cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
       std::vector<float> value(cols);
       for (int y = range.start; y < range.end; ++y) {
-        const float* d = disparity.ptr<float>(y + row0_);
+        const float* d = disparity.ptr<float>(y + row0_) + col0_;
         for (int u = 0; u < cols; ++u) value[u] = validDisparity(d[u]) ? d[u] : 0.0f;
         rowPrefix(value.data(), cols, value_integral_.ptr<double>(y + 1));
       }
@@ -307,7 +324,7 @@ void IntegralNormalField::normalRow(int v, int u0, int count, int step, NormalRo
     out.resize(std::max(count, 0));  // no sample has a normal
     return;
   }
-  CV_Assert(step >= 1 && u0 >= 0 && u0 + (count - 1) * step < cols());
+  CV_Assert(step >= 1 && u0 >= col0_ && u0 + (count - 1) * step < col1_);
   // Every sample is written below: sized, not filled.
   out.nx.resize(count);
   out.ny.resize(count);
@@ -323,7 +340,7 @@ void IntegralNormalField::normalRow(int v, int u0, int count, int step, NormalRo
 template <bool kUnit>
 void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, NormalRow& out) const {
   const int step = kUnit ? 1 : run_step;
-  const int cols = disparity_.cols;
+  const int c0 = col0_, c1 = col1_;  // integral column x holds image column u = x + c0
   const int vb = std::min(v - row0_, row1_ - 1 - v);
   const int rmax = std::min(params_.max_radius_px, vb / 2);  // >= 1 (normalRow)
 
@@ -344,7 +361,7 @@ void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, 
     const float z = fb_ / (valid ? c : 1.0f);
     // min() in float first: same integer as the reference, without an out-of-range conversion.
     const int r = static_cast<int>(std::min((base + per_m * z) * 0.5f, cap));
-    const int border = std::min(std::min(u, cols - 1 - u), vb);
+    const int border = std::min(std::min(u - c0, c1 - 1 - u), vb);
     rt[i] = static_cast<int16_t>(valid ? std::max(0, std::min(r, border / 2)) : 0);
     rad[i] = 0;
   }
@@ -358,12 +375,12 @@ void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, 
       const uint16_t* a = edge_integral_.ptr<uint16_t>(v - w - row0_);
       const uint16_t* b = edge_integral_.ptr<uint16_t>(v + w + 1 - row0_);
       // Only pixels whose windows fit in the columns can have rt >= r.
-      const int i_lo = std::max(0, w - u0);
-      const int i_hi = std::min(count, std::max(0, cols - w - u0));
+      const int i_lo = std::max(0, c0 + w - u0);
+      const int i_hi = std::min(count, std::max(0, c1 - w - u0));
       const int16_t r16 = static_cast<int16_t>(r), below = static_cast<int16_t>(r - 1);
       int16_t grown = 0;
       for (int i = i_lo; i < i_hi; ++i) {
-        const int u = u0 + i;
+        const int u = u0 + i - c0;
         const uint16_t edges = static_cast<uint16_t>(b[u + w + 1] - a[u + w + 1] - b[u - w] + a[u - w]);
         const int16_t ok = (edges == 0) & (rad[i] == below) & (rt[i] >= r16);
         rad[i] = static_cast<int16_t>(rad[i] + ok);
@@ -383,7 +400,7 @@ void IntegralNormalField::normalRowImpl(int v, int u0, int count, int run_step, 
       b_row[r] = edge_integral_.ptr<uint16_t>(v + 2 * r + 1 - row0_);
     }
     for (int i = 0; i < count; ++i) {
-      const int u = u0 + i * step;
+      const int u = u0 + i * step - c0;
       int r = rt[i];
       for (; r >= 1; --r) {
         const int w = 2 * r;
@@ -438,14 +455,15 @@ struct RadiusBoxes {
     yc = (v - cy) * ify;
   }
 
-  // Unit normal at column u (NaN when a smoothed depth is not positive).
-  inline __attribute__((always_inline)) void normal(int u, float cx, float ifx, float& nxo, float& nyo,
-                                                    float& nzo) const {
+  // Unit normal at image column u, integral column x (NaN when a smoothed depth
+  // is not positive).
+  inline __attribute__((always_inline)) void normal(int u, int x, float cx, float ifx, float& nxo,
+                                                    float& nyo, float& nzo) const {
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    const float zr = boxFloat(a, b, u + right0, u + right0 + side);
-    const float zl = boxFloat(a, b, u + left0, u + left0 + side);
-    const float zd = boxFloat(zd0, zd1, u - r, u + r + 1);
-    const float zu = boxFloat(zu0, zu1, u - r, u + r + 1);
+    const float zr = boxFloat(a, b, x + right0, x + right0 + side);
+    const float zl = boxFloat(a, b, x + left0, x + left0 + side);
+    const float zd = boxFloat(zd0, zd1, x - r, x + r + 1);
+    const float zu = boxFloat(zu0, zu1, x - r, x + r + 1);
     const float uf = static_cast<float>(u);
     const float xr = (uf + r - cx) * ifx, xl = (uf - r - cx) * ifx, xc = (uf - cx) * ifx;
     const float hx = xr * zr - xl * zl, hy = yc * (zr - zl), hz = zr - zl;
@@ -485,7 +503,10 @@ void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, Nor
         for (int k = i; k < j; ++k) nxo[k] = nyo[k] = nzo[k] = nan;
       } else {
         const RadiusBoxes<Acc> boxes(row, v, r, smooth, cy, ify);
-        for (int k = i; k < j; ++k) boxes.normal(u0 + k * step, cx, ifx, nxo[k], nyo[k], nzo[k]);
+        for (int k = i; k < j; ++k) {
+          const int u = u0 + k * step;
+          boxes.normal(u, u - col0_, cx, ifx, nxo[k], nyo[k], nzo[k]);
+        }
       }
       i = j;
     }
@@ -514,7 +535,7 @@ void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, Nor
       auto pass = [&](auto clamp_tag, auto full_tag) {
         constexpr bool kClamp = decltype(clamp_tag)::value;
         constexpr bool kFull = decltype(full_tag)::value;
-        const int lo = 2 * r, hi = cols() - 1 - 2 * r;
+        const int lo = col0_ + 2 * r, hi = col1_ - 1 - 2 * r;
         const int m = kFull ? kBlock : n;
         // A local copy: the stores to bx/by/bz below could alias the float
         // members of `boxes` (address-taken) and force a reload per iteration.
@@ -522,14 +543,14 @@ void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, Nor
         for (int k = 0; k < m; ++k) {
           const int u = kClamp ? std::min(std::max(u0 + b0 + k, lo), hi) : u0 + b0 + k;
           float x, y, z;
-          local.normal(u, cx, ifx, x, y, z);
+          local.normal(u, u - col0_, cx, ifx, x, y, z);
           const bool mine = rad[b0 + k] == r;
           bx[k] = mine ? x : bx[k];
           by[k] = mine ? y : by[k];
           bz[k] = mine ? z : bz[k];
         }
       };
-      const bool inside = u0 + b0 >= 2 * r && u0 + b0 + n - 1 <= cols() - 1 - 2 * r;
+      const bool inside = u0 + b0 >= col0_ + 2 * r && u0 + b0 + n - 1 <= col1_ - 1 - 2 * r;
       using Yes = std::true_type;
       using No = std::false_type;
       if (!inside)
@@ -548,7 +569,7 @@ void IntegralNormalField::normalRuns(int v, int u0, int count, int run_step, Nor
 }
 
 double IntegralNormalField::boxSum(int u, int v, int r) const {
-  const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r, x1 = u + r + 1;
+  const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r - col0_, x1 = u + r + 1 - col0_;
   if (fixed_point_) {
     const uint32_t* a = value_integral_.ptr<uint32_t>(y0);
     const uint32_t* b = value_integral_.ptr<uint32_t>(y1);
@@ -561,7 +582,7 @@ double IntegralNormalField::boxSum(int u, int v, int r) const {
 }
 
 int IntegralNormalField::edgeCount(int u, int v, int r) const {
-  const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r, x1 = u + r + 1;
+  const int y0 = v - r - row0_, y1 = v + r + 1 - row0_, x0 = u - r - col0_, x1 = u + r + 1 - col0_;
   const uint16_t* a = edge_integral_.ptr<uint16_t>(y0);
   const uint16_t* b = edge_integral_.ptr<uint16_t>(y1);
   return static_cast<uint16_t>(b[x1] - a[x1] - b[x0] + a[x0]);  // exact: (2r+1)^2 < 2^16
@@ -575,14 +596,14 @@ float IntegralNormalField::smoothedDepth(int u, int v, int r) const {
 }
 
 int IntegralNormalField::depthRadius(int u, int v) const {
-  if (u < 0 || u >= disparity_.cols || v < row0_ || v >= row1_) return 0;
+  if (u < col0_ || u >= col1_ || v < row0_ || v >= row1_) return 0;
   const float d = disparity_.at<float>(v, u);
   if (!validDisparity(d)) return 0;
   const float z = fb_ / d;
   int r = static_cast<int>((params_.window_base_px + params_.window_px_per_m * z) * 0.5f);
   r = std::min(r, params_.max_radius_px);
-  // Every smoothing window reaches 2r from the centre and must stay in the band.
-  const int border = std::min({u, disparity_.cols - 1 - u, v - row0_, row1_ - 1 - v});
+  // Every smoothing window reaches 2r from the centre and must stay in the region.
+  const int border = std::min({u - col0_, col1_ - 1 - u, v - row0_, row1_ - 1 - v});
   return std::max(0, std::min(r, border / 2));
 }
 
@@ -617,7 +638,7 @@ cv::Mat IntegralNormalField::edgeDistance() const {
   cv::Mat inside(rows, cols, CV_8U);  // 255 off edges
   for (int y = 0; y < rows; ++y)
     for (int x = 0; x < cols; ++x)
-      inside.at<uchar>(y, x) = edgeCount(x, y + row0_, 0) == 0 ? 255 : 0;
+      inside.at<uchar>(y, x) = edgeCount(x + col0_, y + row0_, 0) == 0 ? 255 : 0;
   cv::Mat dist;
   cv::distanceTransform(inside, dist, cv::DIST_C, 3, CV_32F);
   return dist;

@@ -65,22 +65,31 @@ class IntegralNormalField {
   IntegralNormalField(IntegralNormalField&&) = default;
   IntegralNormalField& operator=(IntegralNormalField&&) = default;
 
-  // Prepares rows [row_begin, row_end) (clamped to the image). disparity: CV_32F, <= 0 invalid.
-  // Rows are prepared in parallel (cv::parallel_for_). The buffers are kept and
-  // reused by the next prepare(): keep one field across frames.
+  // Prepares rows [row_begin, row_end) (clamped to the image), all columns.
+  // disparity: CV_32F, <= 0 invalid. Rows are prepared in parallel
+  // (cv::parallel_for_). The buffers are kept and reused by the next prepare():
+  // keep one field across frames.
   void prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
                int row_begin = 0, int row_end = INT_MAX);
+  // Prepares a rectangle of the image (clamped to it). Its sides act as the
+  // image border for the radius (windows stay inside), so a pixel at least
+  // 2 * max_radius_px + 1 from every side that is not the image's gets the same
+  // radius and normal as in a whole-image field (bit-identical in fixed point).
+  void prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
+               const cv::Rect& region);
 
   int rowBegin() const { return row0_; }
   int rowEnd() const { return row1_; }
+  int colBegin() const { return col0_; }
+  int colEnd() const { return col1_; }
   bool empty() const { return disparity_.empty(); }
-  int cols() const { return disparity_.cols; }
+  int cols() const { return disparity_.cols; }  // of the image
   // True when the value integral is the exact fixed-point (uint32) one.
   bool fixedPoint() const { return fixed_point_; }
 
   // --- fast path: a whole grid row at once (vectorised, no per-pixel division) ---
-  // Normals of pixels (u0 + i*step, v), i < count; v in the band, u0 >= 0,
-  // u0 + (count-1)*step < cols. Equal to adaptiveRadius + normalAt per pixel
+  // Normals of pixels (u0 + i*step, v), i < count; v in the region, u0 >= colBegin(),
+  // u0 + (count-1)*step < colEnd(). Equal to adaptiveRadius + normalAt per pixel
   // (same radius; vectors within float rounding, test FastRowEqualsReference).
   void normalRow(int v, int u0, int count, int step, NormalRow& out) const;
 
@@ -118,7 +127,7 @@ class IntegralNormalField {
   bool fixed_point_ = false;
   StereoCamera cam_;
   IntegralNormalParams params_;
-  int row0_ = 0, row1_ = 0;
+  int row0_ = 0, row1_ = 0, col0_ = 0, col1_ = 0;
   float fb_ = 0, inv_fx_ = 0, inv_fy_ = 0;
 };
 

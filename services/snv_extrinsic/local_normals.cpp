@@ -14,10 +14,11 @@ int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, i
                        std::vector<LocalNormal>& out) {
   CV_Assert(interval_px >= 1);
   if (field.empty() || rect.width <= 0 || rect.height <= 0) return 0;
-  // Samples live in the prepared band (the caller sizes it with rowBandFor()).
-  const int u0 = firstGrid(std::max(rect.x, 0), interval_px);
+  // Samples live in the prepared region (the caller sizes it with rowBandFor()
+  // or regionFor()).
+  const int u0 = firstGrid(std::max(rect.x, field.colBegin()), interval_px);
   const int v0 = firstGrid(std::max(rect.y, field.rowBegin()), interval_px);
-  const int u1 = std::min(rect.x + rect.width, field.cols());
+  const int u1 = std::min(rect.x + rect.width, field.colEnd());
   const int v1 = std::min(rect.y + rect.height, field.rowEnd());
   if (u0 >= u1 || v0 >= v1) return 0;
   const int count = (u1 - u0 + interval_px - 1) / interval_px;
@@ -31,6 +32,13 @@ int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, i
         out.push_back({u0 + i * interval_px, v, cv::Vec3f(row.nx[i], row.ny[i], row.nz[i])});
   }
   return samples;
+}
+
+cv::Rect regionFor(const cv::Rect& rect, const cv::Size& image, int max_radius_px) {
+  if (rect.width <= 0 || rect.height <= 0) return cv::Rect();
+  const int margin = 2 * max_radius_px + 1;
+  return cv::Rect(rect.x - margin, rect.y - margin, rect.width + 2 * margin, rect.height + 2 * margin) &
+         cv::Rect(0, 0, image.width, image.height);
 }
 
 cv::Range rowBandFor(const std::vector<cv::Rect>& rects, int image_rows, int max_radius_px) {

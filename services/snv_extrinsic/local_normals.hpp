@@ -26,4 +26,9 @@ int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, i
 // its largest window (2 * max_radius_px around it).
 cv::Range rowBandFor(const std::vector<cv::Rect>& rects, int image_rows, int max_radius_px);
 
+// The rectangle a field must prepare for the grid pixels of one `rect` alone
+// (IntegralNormalField::prepare with a region): rect grown by the same margin,
+// clipped to the image; empty for an empty rect.
+cv::Rect regionFor(const cv::Rect& rect, const cv::Size& image, int max_radius_px);
+
 }  // namespace nerv::snv

@@ -160,17 +160,13 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
   const cv::Rect image(0, 0, disparity.cols, disparity.rows);
   const GroundSampleParams gp = groundParams(params_);
 
-  // One integral field over the rows that the ROIs and the ground need.
+  // The local SNV's fields: the ground band, and each ROI outside it on its own (local_fields.hpp).
   std::vector<cv::Rect> rects;
-  rects.reserve(rois.size() + 1);
+  rects.reserve(rois.size());
   for (const Hypothesis& h : rois) rects.push_back(cv::Rect(h.box.x, h.box.y, h.box.w, h.box.h) & image);
   const cv::Range ground_rows = groundRows(cam, ground, gp);
-  std::vector<cv::Rect> needed = rects;
-  if (!ground_rows.empty())
-    needed.push_back(cv::Rect(0, ground_rows.start, disparity.cols, ground_rows.size()));
-  const cv::Range band = rowBandFor(needed, disparity.rows, params_.max_radius_px);
-  IntegralNormalField& field = field_;  // a fresh field page-faulted its ~3 MB every frame
-  field.prepare(disparity, cam, normalParams(params_), band.start, band.end);
+  fields_.prepare(disparity, cam, normalParams(params_), ground_rows, rects);
+  const IntegralNormalField& field = fields_.ground();
 
   // Super-SNV pose from the ground normals.
   filter_.predict();
@@ -360,7 +356,7 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
   std::vector<LocalNormal> normals;
   for (size_t i = 0; i < rois.size(); ++i) {
     normals.clear();
-    const int n_samples = localNormalsInRect(field, rects[i], interval, normals);
+    const int n_samples = localNormalsInRect(fields_.roi(i), rects[i], interval, normals);
     res.rois.push_back(computeRoiStats(rois[i].id, n_samples, normals, g, rp));
   }
   return res;

@@ -10,6 +10,7 @@
 #include "config.hpp"
 #include "ground_samples.hpp"
 #include "integral_normals.hpp"
+#include "local_fields.hpp"
 #include "perception_types.hpp"
 #include "pose_filter.hpp"
 #include "stereo_camera.hpp"
@@ -108,7 +109,7 @@ class SnvExtrinsicEstimator {
  private:
   Params params_;
   PoseFilter filter_;
-  IntegralNormalField field_;  // kept across frames so its integral buffers are reused
+  LocalFields fields_;  // kept across frames so their integral buffers are reused
 };
 
 }  // namespace nerv::snv

@@ -325,6 +325,59 @@ TEST(snvIntegralNormals, NormalRowAnyStartAndStep) {
   }
 }
 
+// A rectangle field (a ROI with its margin, as snv_extrinsic prepares above the
+// ground band) gives every pixel of the ROI the radius and normal of a whole-image
+// field, bit for bit in fixed point and in CV_64F within rounding; pixels at its
+// own sides follow the per-pixel path of the same field (its sides act as the
+// border). Also at the image's sides, with one field reused across sizes.
+TEST(snvIntegralNormals, RegionFieldEqualsWholeImageInsideTheRoi) {
+  const StereoCamera c = test::kittiCamera();
+  const int margin = 2 * IntegralNormalParams{}.max_radius_px + 1;
+  IntegralNormalField region;
+  for (const float step : {1.0f / 16, 0.0f}) {
+    const cv::Mat d = clutteredScene(c, step);
+    IntegralNormalField whole;
+    whole.prepare(d, c, IntegralNormalParams{});
+    const cv::Rect image(0, 0, c.width, c.height);
+    for (const cv::Rect roi : {cv::Rect(480, 50, 240, 170), cv::Rect(0, 100, 170, 150), cv::Rect(1100, 0, 142, 90),
+                               cv::Rect(910, 240, 40, 50), cv::Rect(600, 370, 30, 5)}) {
+      const cv::Rect with_margin = cv::Rect(roi.x - margin, roi.y - margin, roi.width + 2 * margin,
+                                            roi.height + 2 * margin) & image;
+      region.prepare(d, c, IntegralNormalParams{}, with_margin);
+      ASSERT_EQ(region.colBegin(), with_margin.x);
+      ASSERT_EQ(region.colEnd(), with_margin.x + with_margin.width);
+      ASSERT_EQ(region.fixedPoint(), step > 0);
+      SCOPED_TRACE(::testing::Message() << "step " << step << " roi " << roi);
+      NormalRow a, b;
+      int with_normal = 0;
+      for (int v = roi.y; v < roi.y + roi.height; ++v)
+        for (int st : {1, 3}) {
+          const int count = (roi.width - 1) / st + 1;
+          region.normalRow(v, roi.x, count, st, a);
+          whole.normalRow(v, roi.x, count, st, b);
+          for (int i = 0; i < count; ++i) {
+            ASSERT_EQ(a.radius[i], b.radius[i]) << roi.x + i * st << "," << v;
+            ASSERT_EQ(std::isnan(a.nx[i]), std::isnan(b.nx[i]));
+            if (std::isnan(a.nx[i])) continue;
+            ++with_normal;
+            const cv::Vec3f na(a.nx[i], a.ny[i], a.nz[i]), nb(b.nx[i], b.ny[i], b.nz[i]);
+            if (step > 0)
+              ASSERT_EQ(na, nb);
+            else
+              ASSERT_LT(angleDeg(na, nb), 1e-3);
+          }
+        }
+      EXPECT_GT(with_normal, roi.area() / 4);
+      // The region's own sides: the per-pixel path of the same field.
+      for (int v : {with_margin.y, with_margin.y + 5, with_margin.y + with_margin.height - 1}) {
+        const int count = with_margin.width;
+        region.normalRow(v, with_margin.x, count, 1, a);
+        for (int i = 0; i < count; ++i) ASSERT_EQ(a.radius[i], region.adaptiveRadius(with_margin.x + i, v));
+      }
+    }
+  }
+}
+
 // The vectorised row prefix sums (8 lanes and a scalar tail) and the reused
 // buffers against cv::integral of the same edge map and fixed-point values, on
 // widths that are not multiples of 8, bands of different sizes, and a field
