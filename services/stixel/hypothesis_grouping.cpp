@@ -284,26 +284,28 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   // occupied strip: a stray stixel (a window, a reflection, a thin post in
   // front) does not cut an object in two. Two stixels of the same strip (an
   // occluder and the object above it) never join directly.
-  std::vector<size_t> order(stixels.size());
+  // Own copy: the overhang cut lowers stixel tops.
+  std::vector<Stixel> own = stixels;
+  std::vector<size_t> order(own.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return stixels[x].u < stixels[y].u; });
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return own[x].u < own[y].u; });
   std::vector<int> strip(order.size());  // rank of the stixel's column among occupied columns
   for (size_t k = 0; k < order.size(); ++k)
-    strip[k] = k == 0 ? 0 : strip[k - 1] + (stixels[order[k]].u != stixels[order[k - 1]].u ? 1 : 0);
-  std::vector<size_t> parent(stixels.size());
+    strip[k] = k == 0 ? 0 : strip[k - 1] + (own[order[k]].u != own[order[k - 1]].u ? 1 : 0);
+  std::vector<size_t> parent(own.size());
   for (size_t i = 0; i < parent.size(); ++i) parent[i] = i;
   for (size_t oi = 0; oi < order.size(); ++oi) {
     for (size_t oj = oi + 1; oj < order.size() && strip[oj] - strip[oi] <= 2; ++oj) {
       if (strip[oj] == strip[oi]) continue;
-      if (joins(stixels[order[oi]], stixels[order[oj]], cam, p)) parent[root(parent, order[oi])] = root(parent, order[oj]);
+      if (joins(own[order[oi]], own[order[oj]], cam, p)) parent[root(parent, order[oi])] = root(parent, order[oj]);
     }
   }
   std::vector<std::vector<const Stixel*>> groups;
-  std::vector<int> group_of(stixels.size(), -1);
+  std::vector<int> group_of(own.size(), -1);
   for (size_t i : order) {  // members in u order, groups in order of their leftmost stixel
     const size_t r = root(parent, i);
     if (group_of[r] < 0) group_of[r] = static_cast<int>(groups.size()), groups.emplace_back();
-    groups[group_of[r]].push_back(&stixels[i]);
+    groups[group_of[r]].push_back(&own[i]);
   }
 
   std::vector<bool> tower(groups.size(), false);
@@ -312,6 +314,17 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   splitStructures(groups, tower, clear_above, cam, p);
   splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
+
+  // Overhangs last: a tree's trunk must still be a structure when the
+  // structure split runs, or the pedestrian beside it stays in its group.
+  if (p.overhang.min_reach_m > 0 && input.disparity && input.ground) {
+    std::vector<Stixel*> m;
+    for (const auto& g : groups) {
+      m.clear();
+      for (const Stixel* s : g) m.push_back(&own[static_cast<size_t>(s - own.data())]);
+      cutOverhang(*input.disparity, cam, *input.ground, m, p.overhang);
+    }
+  }
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;

@@ -110,6 +110,15 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;
+  gp.overhang.min_reach_m = params.overhang_min_reach_m;
+  gp.overhang.min_fill = params.overhang_min_fill;
+  gp.overhang.min_height_m = params.overhang_min_height_m;
+  gp.overhang.min_width_m = params.overhang_min_width_m;
+  gp.overhang.max_width_m = params.overhang_max_width_m;
+  gp.overhang.max_distance_m = params.overhang_max_distance_m;
+  gp.overhang.depth_tolerance_m = params.refine_depth_tolerance_m;
+  gp.overhang.ground_tolerance_m = params.ground_tolerance_m;
+  gp.overhang.column_width_px = params.column_width_px;
   gp.refine_boxes = params.refine_boxes;
   gp.column_width_px = params.column_width_px;
   gp.refinement.depth_tolerance_m = params.refine_depth_tolerance_m;

@@ -39,6 +39,12 @@ Params readParams(ConfigSection& c) {
   c.get("object_depth_tolerance_m", p.object_depth_tolerance_m, 0.01, 100.0);
   c.get("max_stixel_height_m", p.max_stixel_height_m, 0.1, 100.0);
   c.get("min_single_stixel_height_m", p.min_single_stixel_height_m, 0.0, 100.0);
+  c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
+  c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
+  c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);
+  c.get("overhang_min_width_m", p.overhang_min_width_m, 0.0, 10.0);
+  c.get("overhang_max_width_m", p.overhang_max_width_m, 0.0, 100.0);
+  c.get("overhang_max_distance_m", p.overhang_max_distance_m, 0.0, 500.0);
   c.get("refine_boxes", p.refine_boxes);
   c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);
   c.get("refine_min_column_fill", p.refine_min_column_fill, 0.0, 1.0);
