@@ -41,6 +41,7 @@
 #include "dataset.hpp"
 #include "detection_eval.hpp"
 #include "kitti_labels.hpp"
+#include "message_convert.hpp"
 #include "snv_extrinsic.hpp"
 #include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
@@ -147,9 +148,19 @@ AllParams loadParams(const Options& o) {
   return p;
 }
 
-// Disparity of one frame, from the cache when the same pair and matcher
-// settings were computed before. Stored as uint16 PNG of d*16 (SGBM's exact
-// fixed-point value), so the cache is lossless.
+// The disparity the stixel and snv_extrinsic services receive: the DISPARITY
+// message's fixed point (1/256 px, common/message_convert), as uint16.
+cv::Mat wireFixed(const cv::Mat& d) {
+  disparity_t msg;
+  encodeDisparity(d, "u16le", msg);
+  return cv::Mat(msg.height, msg.width, CV_16U, msg.data.data()).clone();
+}
+
+// Disparity of one frame as the pipeline's later stages see it (wireFixed), from
+// the cache when the same pair and matcher settings were computed before. The
+// cache holds the wire's uint16 as PNG, so cached and fresh runs are identical
+// (an earlier cache of 1/16 px steps rounded nerv_sgm's finer subpixel values:
+// up to 0.01 F1 apart from a fresh run; its files have other names).
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
                     const std::string& cache_dir, double& ms) {
   std::ostringstream key;
@@ -157,28 +168,26 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
       << '|' << sp.algorithm << sp.num_disparities << '_' << sp.min_disparity << '_' << sp.block_size << '_'
       << sp.p1 << '_' << sp.p2 << '_' << sp.uniqueness_ratio << '_' << sp.speckle_window_size << '_'
       << sp.speckle_range << '_' << sp.lr_max_diff << '_' << sp.census_width << 'x' << sp.census_height << '_'
-      << sp.sgm_p1 << '_' << sp.sgm_p2 << '_' << sp.subpixel << '_' << sp.boundary_snap_px << '_' << sp.downscale;
+      << sp.sgm_p1 << '_' << sp.sgm_p2 << '_' << sp.subpixel << '_' << sp.boundary_snap_px << '_' << sp.downscale
+      << "|wire" << kDisparityScale;
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
-  if (fs::exists(path)) {
-    cv::Mat fixed = cv::imread(path, cv::IMREAD_UNCHANGED);
-    if (!fixed.empty() && fixed.type() == CV_16U) {
-      cv::Mat d;
-      fixed.convertTo(d, CV_32F, 1.0 / 16.0);
-      return d;
-    }
-  }
-  const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_GRAYSCALE);
-  const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_GRAYSCALE);
-  if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
-  cv::Mat d;
-  const auto t0 = std::chrono::steady_clock::now();
-  m.compute(left, right, d);
-  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   cv::Mat fixed;
-  d.convertTo(fixed, CV_16U, 16.0);
-  fs::create_directories(cache_dir);
-  cv::imwrite(path, fixed);
+  if (fs::exists(path)) fixed = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (fixed.empty() || fixed.type() != CV_16U) {
+    const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_GRAYSCALE);
+    const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_GRAYSCALE);
+    if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
+    cv::Mat d;
+    const auto t0 = std::chrono::steady_clock::now();
+    m.compute(left, right, d);
+    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    fixed = wireFixed(d);
+    fs::create_directories(cache_dir);
+    cv::imwrite(path, fixed);
+  }
+  cv::Mat d;
+  fixed.convertTo(d, CV_32F, 1.0 / kDisparityScale);
   return d;
 }
 
@@ -318,16 +327,16 @@ int main(int argc, char** argv) {
     std::map<std::string, int> fp_removed, fp_kept, tp_lost, fp_where;
     std::map<std::string, int> verdicts;
     int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
-    std::vector<double> ms_sgbm, ms_stixel, ms_snv, ms_val;
+    std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val;
     Stat ground_h, ground_p, snv_h, snv_p, snv_ih, snv_ip;
     std::vector<Track> tracks;
     int num_hyps = 0;
 
     for (size_t fi = 0; fi < ds.frames.size(); ++fi) {
       const DatasetFrame& f = ds.frames[fi];
-      double t_sgbm = 0;
-      const cv::Mat disp = disparityOf(f, P.stereo, *matcher, o.cache, t_sgbm);
-      if (t_sgbm > 0) ms_sgbm.push_back(t_sgbm);
+      double t_matcher = 0;
+      const cv::Mat disp = disparityOf(f, P.stereo, *matcher, o.cache, t_matcher);
+      if (t_matcher > 0) ms_matcher.push_back(t_matcher);
 
       auto t0 = std::chrono::steady_clock::now();
       const stixel::StixelResult st = stixel::estimateStixels(disp, f.camera, P.stixel, prior);
@@ -601,9 +610,9 @@ int main(int argc, char** argv) {
                   "%.3f m, pitch %+.3f / %.3f deg (%d frames)\n",
                   ground_h.mean(), ground_h.max, ground_p.mean(), ground_p.max, ground_h.n, snv_h.mean(), snv_h.max,
                   snv_p.mean(), snv_p.max, snv_ih.mean(), snv_ih.max, snv_ip.mean(), snv_ip.max, snv_h.n);
-    std::printf("ms per frame (median / mean): sgbm %.2f / %.2f (%zu computed, rest cached), stixel %.2f / %.2f, "
+    std::printf("ms per frame (median / mean): %s %.2f / %.2f (%zu computed, rest cached), stixel %.2f / %.2f, "
                 "snv %.2f / %.2f, validator %.3f / %.3f\n",
-                median(ms_sgbm), mean(ms_sgbm), ms_sgbm.size(), median(ms_stixel), mean(ms_stixel),
+                P.stereo.algorithm.c_str(), median(ms_matcher), mean(ms_matcher), ms_matcher.size(), median(ms_stixel), mean(ms_stixel),
                 median(ms_snv), mean(ms_snv), median(ms_val), mean(ms_val));
     return 0;
   } catch (const std::exception& e) {
