@@ -324,7 +324,7 @@ int main(int argc, char** argv) {
     ep.max_distance_m = o.max_distance_m;
     EvalCounts all, kept;
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
-    std::map<std::string, int> fp_removed, fp_kept, tp_lost, fp_where;
+    std::map<std::string, int> fp_removed, fp_kept, tp_lost, tp_kept, fp_where;
     std::map<std::string, int> verdicts;
     int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
     std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val;
@@ -435,7 +435,7 @@ int main(int argc, char** argv) {
       for (size_t i = 0; i < hyps.size(); ++i) {
         if (out_all[i] == Outcome::TP) {
           ++cls_tp_all[labels[ml_all[i]].type];
-          if (!vs[i].kept) ++tp_lost[reasonKind(vs[i])];
+          ++(vs[i].kept ? tp_kept : tp_lost)[reasonKind(vs[i])];
         } else if (out_all[i] == Outcome::FP) {
           (vs[i].kept ? fp_kept : fp_removed)[reasonKind(vs[i])]++;
           // Where the false positive lies: on a labelled object (split, merge,
@@ -581,6 +581,7 @@ int main(int argc, char** argv) {
       dump("false positives of stixel only, removed by SNV (verdict: reason):", fp_removed);
       dump("false positives kept by SNV (verdict):", fp_kept);
       dump("true positives lost by SNV (verdict: reason):", tp_lost);
+      dump("true positives kept by SNV (verdict):", tp_kept);
       dump("false positives by location (stixel only):", fp_where);
     }
     std::printf("verdicts:");
