@@ -72,9 +72,9 @@ struct Params {
   float max_height_m = 5.0f;
   float filter_roll_process_var_deg2 = 0.05f;   // roll random walk per frame [deg^2]
   float filter_height_process_var_m2 = 1e-4f;   // height random walk per frame [m^2]
-  float filter_pitch_meas_var_deg2 = 0.04f;     // one frame's pitch variance [deg^2]
-  float filter_roll_meas_var_deg2 = 0.04f;      // one frame's roll variance [deg^2]
-  float filter_height_meas_var_m2 = 4e-4f;      // one frame's height variance [m^2]
+  float filter_pitch_meas_var_deg2 = 0.01f;     // one frame's pitch variance [deg^2] (docs/snv.md "Filter")
+  float filter_roll_meas_var_deg2 = 0.01f;      // one frame's roll variance [deg^2] (docs/snv.md "Filter")
+  float filter_height_meas_var_m2 = 1e-4f;      // one frame's height variance [m^2] (docs/snv.md "Filter")
   bool filter_adaptive = true;                  // inflate the prior to the innovation when it is larger (tracks swings)
 
   // ROI classes (roi_normal_stats.hpp).
