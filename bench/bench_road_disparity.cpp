@@ -63,6 +63,7 @@ struct Stats {
   double frac_hist[10] = {};
   double err_hist[21] = {};  // e in 0.1 px bins, -1.05..+1.05
   double band_sum[6] = {}, band_n[6] = {};  // depth bands 0-5,5-10,...,25-30 m
+  double near_sum[6] = {}, near_n[6] = {}, open_sum[6] = {}, open_n[6] = {};  // within 16 px of an object in the row, or not
   long road = 0, valid = 0;
   std::vector<double> pitch_err, roll_err, height_err;
   std::vector<double> box_err, box_grad;
@@ -271,6 +272,13 @@ int main(int argc, char** argv) {
               const int band = std::min(5, static_cast<int>(z / 5));
               s.band_sum[band] += e;
               s.band_n[band] += 1;
+              bool near = false;
+              for (int du = -16; du <= 16 && !near; ++du) {
+                const int uu = u + du;
+                if (uu >= 0 && uu < cam.width && rf.object_id.at<int>(v, uu) != -1) near = true;
+              }
+              (near ? s.near_sum : s.open_sum)[band] += e;
+              (near ? s.near_n : s.open_n)[band] += 1;
             }
           }
         {
@@ -392,6 +400,10 @@ int main(int argc, char** argv) {
     for (int b = 0; b < 21; ++b) std::printf(" %.1f", 100.0 * s.err_hist[b] / std::max(1.0, n));
     std::printf("\n%-10s   mean e per 5 m depth band:      ", matchers[m].c_str());
     for (int b = 0; b < 6; ++b) std::printf(" %+.3f", s.band_sum[b] / std::max(1.0, s.band_n[b]));
+    std::printf("\n%-10s   near objects (16 px):", matchers[m].c_str());
+    for (int b = 0; b < 6; ++b) std::printf(" %+.3f (%.0f)", s.near_sum[b] / std::max(1.0, s.near_n[b]), s.near_n[b]);
+    std::printf("\n%-10s   open road:", matchers[m].c_str());
+    for (int b = 0; b < 6; ++b) std::printf(" %+.3f (%.0f)", s.open_sum[b] / std::max(1.0, s.open_n[b]), s.open_n[b]);
     auto meanStd = [](const std::vector<double>& x, double& mu, double& sd) {
       mu = 0;
       for (double v : x) mu += v;
