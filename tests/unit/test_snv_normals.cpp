@@ -7,6 +7,7 @@
 
 #include "ground_samples.hpp"
 #include "integral_normals.hpp"
+#include "local_fields.hpp"
 #include "local_normals.hpp"
 #include "naive_normals.hpp"
 #include "point_cloud.hpp"
@@ -374,6 +375,46 @@ TEST(snvIntegralNormals, RegionFieldEqualsWholeImageInsideTheRoi) {
         region.normalRow(v, with_margin.x, count, 1, a);
         for (int i = 0; i < count; ++i) ASSERT_EQ(a.radius[i], region.adaptiveRadius(with_margin.x + i, v));
       }
+    }
+  }
+}
+
+// LocalFields: a ROI inside the ground rows reads the ground field, any other
+// (above it, straddling it, at the image's sides) gets its own; the local normals
+// of every ROI equal those of one whole-image field, also when the same object is
+// reused for a second frame with other ROIs, and empty / outside ROIs give none.
+TEST(snvLocalFields, RoisOutsideTheGroundRowsGetTheirOwnFieldWithTheSameNormals) {
+  const StereoCamera c = test::kittiCamera();
+  const cv::Mat d = clutteredScene(c, 1.0f / 16);
+  const GroundSampleParams gp;
+  const cv::Range ground_rows = groundRows(c, GroundModel{}, gp);
+  ASSERT_FALSE(ground_rows.empty());
+  IntegralNormalField whole;
+  whole.prepare(d, c, IntegralNormalParams{});
+  LocalFields fields;
+  const std::vector<std::vector<cv::Rect>> frames = {
+      {cv::Rect(500, 60, 200, 150), cv::Rect(100, ground_rows.start + 5, 60, 40), cv::Rect(1000, 40, 200, 200),
+       cv::Rect(0, 0, 40, 375), cv::Rect(), cv::Rect(1300, 10, 20, 20) & cv::Rect(0, 0, c.width, c.height)},
+      {cv::Rect(300, ground_rows.start, 80, ground_rows.size()), cv::Rect(1180, 100, 62, 120)}};
+  const std::vector<int> own_expected = {3, 1};
+  for (size_t fi = 0; fi < frames.size(); ++fi) {
+    const std::vector<cv::Rect>& rois = frames[fi];
+    fields.prepare(d, c, IntegralNormalParams{}, ground_rows, rois);
+    EXPECT_EQ(fields.ownFields(), own_expected[fi]);
+    EXPECT_EQ(fields.ground().rowBegin(), std::max(0, ground_rows.start - 17));
+    for (size_t i = 0; i < rois.size(); ++i) {
+      SCOPED_TRACE(::testing::Message() << "frame " << fi << " roi " << rois[i]);
+      std::vector<LocalNormal> a, b;
+      const int na = localNormalsInRect(fields.roi(i), rois[i], 2, a);
+      const int nb = localNormalsInRect(whole, rois[i], 2, b);
+      EXPECT_EQ(na, nb);
+      ASSERT_EQ(a.size(), b.size());
+      for (size_t k = 0; k < a.size(); ++k) {
+        ASSERT_EQ(a[k].u, b[k].u);
+        ASSERT_EQ(a[k].v, b[k].v);
+        ASSERT_EQ(a[k].n, b[k].n);
+      }
+      if (rois[i].area() > 1000) EXPECT_GT(a.size(), 100u);
     }
   }
 }
