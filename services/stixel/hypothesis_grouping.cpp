@@ -351,6 +351,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       PixelBox box{x0, x1, y0, y1};
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
                 p.tower_edges_above_surround ? clear_above[gi] : kNoSurround);
+      widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).

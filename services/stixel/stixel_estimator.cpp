@@ -127,6 +127,13 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.refinement.min_row_fill = params.refine_min_row_fill;
   gp.refinement.min_column_run_m = params.refine_min_column_run_m;
   gp.refinement.max_extension_m = params.refine_max_extension_m;
+  gp.post_sides.max_width_m = params.post_sides_max_width_m;
+  gp.post_sides.min_height_m = params.post_sides_min_height_m;
+  gp.post_sides.min_run_m = params.post_sides_min_run_m;
+  gp.post_sides.max_extension_m = params.post_sides_max_extension_m;
+  gp.post_sides.max_gap_m = params.post_sides_max_gap_m;
+  gp.post_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
+  gp.post_sides.ground_tolerance_m = params.ground_tolerance_m;
   result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground});
   return result;
 }

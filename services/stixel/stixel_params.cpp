@@ -51,6 +51,11 @@ Params readParams(ConfigSection& c) {
   c.get("refine_min_row_fill", p.refine_min_row_fill, 0.0, 1.0);
   c.get("refine_min_column_run_m", p.refine_min_column_run_m, 0.0, 10.0);
   c.get("refine_max_extension_m", p.refine_max_extension_m, 0.0, 10.0);
+  c.get("post_sides_max_width_m", p.post_sides_max_width_m, 0.0, 10.0);
+  c.get("post_sides_min_height_m", p.post_sides_min_height_m, 0.0, 100.0);
+  c.get("post_sides_min_run_m", p.post_sides_min_run_m, 0.01, 10.0);
+  c.get("post_sides_max_extension_m", p.post_sides_max_extension_m, 0.0, 10.0);
+  c.get("post_sides_max_gap_m", p.post_sides_max_gap_m, 0.0, 10.0);
   if (p.min_camera_height_m >= p.max_camera_height_m)
     throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
   if (p.ground_tolerance_m >= p.min_camera_height_m)
