@@ -124,6 +124,8 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.refinement.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.refinement.ground_tolerance_m = params.ground_tolerance_m;
   gp.refinement.min_column_fill = params.refine_min_column_fill;
+  gp.refinement.narrow_max_width_m = params.refine_narrow_max_width_m;
+  gp.refinement.narrow_min_column_fill = params.refine_narrow_min_column_fill;
   gp.refinement.min_row_fill = params.refine_min_row_fill;
   gp.refinement.min_column_run_m = params.refine_min_column_run_m;
   gp.refinement.max_extension_m = params.refine_max_extension_m;

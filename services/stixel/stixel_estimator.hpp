@@ -57,6 +57,8 @@ struct Params {
   bool refine_boxes = true;              // cut box edges at pixel level (box_refinement.hpp)
   float refine_depth_tolerance_m = 1.0f; // refinement: pixels within this depth of the edge stixel are object
   float refine_min_column_fill = 0.25f;  // refinement: an edge column needs this share of the stixel's rows
+  float refine_narrow_max_width_m = 0.35f;  // refinement: ... in groups at most this wide (posts; 0 = off) ...
+  float refine_narrow_min_column_fill = 0.4f; // ... this share
   float refine_min_column_run_m = 0.4f;  // refinement: ... or a run this long [m] (sign plates); 0 = off
   float refine_max_extension_m = 0.5f;   // refinement: edges may move this far outside the group (>= a strip)
   float refine_min_row_fill = 0.3f;      // refinement: the top row needs this share of the box width

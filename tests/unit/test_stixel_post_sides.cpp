@@ -1,6 +1,7 @@
-// Post sides across matcher holes (post_sides.hpp): a sign post narrower than
-// its strip whose plate has holes beside the post and in its rows gets the
-// plate's width; a post without a plate keeps its own; the config keys.
+// Box sides of posts: a sign post narrower than its strip whose plate has
+// holes beside the post and in its rows gets the plate's width (post_sides.hpp);
+// a post without a plate keeps its own; the matcher's fattening beside a post
+// stays outside its box (box_refinement.hpp, narrow groups); the config keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -16,20 +17,25 @@
 namespace nerv::stixel {
 namespace {
 
-// The post's hypothesis (a box taller than 2 m at depth z), if any.
-std::optional<Hypothesis> postAt(const std::vector<Hypothesis>& hs, float z) {
+// The post's hypothesis (a box taller than min_height_m at depth z), if any.
+std::optional<Hypothesis> postAt(const std::vector<Hypothesis>& hs, float z, float min_height_m = 2.0f) {
   for (const Hypothesis& h : hs)
-    if (std::abs(h.z_m - z) < 1.0f && h.height_m > 2.0f) return h;
+    if (std::abs(h.z_m - z) < 1.0f && h.height_m > min_height_m) return h;
   return std::nullopt;
 }
 
-TEST(stixelPostSides, ASignPlateWithHolesWidensItsPostsBox) {
+// A flat road seen by the KITTI-like camera; each test paints its posts.
+class stixelPostSides : public ::testing::Test {
+ protected:
+  const StereoCamera cam = kittiLikeCamera();
+  const RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+};
+
+TEST_F(stixelPostSides, ASignPlateWithHolesWidensItsPostsBox) {
   // A 0.15 m post 3 m tall at 15 m with a 0.8 m wide, 0.6 m tall plate at its
   // top. The matcher leaves two invalid columns along each side of the post
   // (its left-right check) and every fourth plate row invalid (no texture).
-  const StereoCamera cam = kittiLikeCamera();
-  RoadScene scene;
-  cv::Mat disp = renderDisparity(scene, cam);
   const float z = 15.0f;
   const FaceColumns post = paintFace(disp, scene, cam, z, -0.075, 0.075, 0.0, 3.0);
   const FaceColumns plate = paintFace(disp, scene, cam, z, -0.4, 0.4, 2.4, 3.0);
@@ -54,12 +60,9 @@ TEST(stixelPostSides, ASignPlateWithHolesWidensItsPostsBox) {
   EXPECT_NEAR(wide->box.x + wide->box.w, plate.u1, 2);
 }
 
-TEST(stixelPostSides, APostWithoutAPlateKeepsItsWidthBesideABackgroundWall) {
+TEST_F(stixelPostSides, APostWithoutAPlateKeepsItsWidthBesideABackgroundWall) {
   // The same post with its holes in front of a wall 5 m behind it: the wall's
   // pixels are valid at another depth, so no column beside the post joins.
-  const StereoCamera cam = kittiLikeCamera();
-  RoadScene scene;
-  cv::Mat disp = renderDisparity(scene, cam);
   const float z = 15.0f;
   paintFace(disp, scene, cam, 20.0f, -3.0, 3.0, 0.0, 3.5);
   const FaceColumns post = paintFace(disp, scene, cam, z, -0.075, 0.075, 0.0, 3.0);
@@ -73,14 +76,47 @@ TEST(stixelPostSides, APostWithoutAPlateKeepsItsWidthBesideABackgroundWall) {
   EXPECT_LE(h->box.x + h->box.w, post.u1 + 1);
 }
 
-TEST(stixelPostSides, KeysAreReadAndRangeChecked) {
+TEST_F(stixelPostSides, APostsFattenedNeighbourColumnsStayOutsideItsBox) {
+  // A 0.15 m post 2 m tall at 20 m across two strips. The matcher fattens it:
+  // the two columns on either side hold its disparity on every other row of
+  // its top 70 % and the background's (40 m) on the rows between: 35 % of its
+  // rows, more than the quarter the refinement asks of a vehicle's edge column.
+  const float z = 20.0f;
+  const FaceColumns post = paintFace(disp, scene, cam, z, -0.03, 0.12, 0.0, 2.0);
+  ASSERT_NE(post.u0 / 5, (post.u1 - 1) / 5) << "the post must lie across two strips";
+  const double px_per_m = cam.fx / z;
+  const double side_m = 2.0 / px_per_m;  // two columns
+  const FaceColumns left = paintFace(disp, scene, cam, z, -0.03 - side_m, -0.03, 0.6, 2.0);
+  const FaceColumns right = paintFace(disp, scene, cam, z, 0.12, 0.12 + side_m, 0.6, 2.0);
+  const double foot = footRow(scene, cam, z);
+  const float background = static_cast<float>(cam.fx * cam.baseline_m / 40.0);
+  for (int v = static_cast<int>(foot - 2.0 * px_per_m); v < foot - 0.6 * px_per_m; v += 2) {
+    disp.row(v).colRange(left.u0, left.u1).setTo(background);
+    disp.row(v).colRange(right.u0, right.u1).setTo(background);
+  }
+
+  Params off;
+  off.refine_narrow_max_width_m = 0.0f;
+  const std::optional<Hypothesis> wide = postAt(estimateStixels(disp, cam, off).hypotheses, z, 1.5f);
+  ASSERT_TRUE(wide.has_value());
+  EXPECT_LT(wide->box.x, post.u0) << "without the rule the fattened columns are in the box";
+
+  const std::optional<Hypothesis> h = postAt(estimateStixels(disp, cam, Params{}).hypotheses, z, 1.5f);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_EQ(h->box.x, post.u0);
+  EXPECT_EQ(h->box.x + h->box.w, post.u1);
+}
+
+TEST_F(stixelPostSides, KeysAreReadAndRangeChecked) {
   // Each key with a valid value it must be read as, then each below its range.
   const std::vector<std::pair<const char*, float Params::*>> keys = {
       {"post_sides_max_width_m", &Params::post_sides_max_width_m},
       {"post_sides_min_height_m", &Params::post_sides_min_height_m},
       {"post_sides_min_run_m", &Params::post_sides_min_run_m},
       {"post_sides_max_extension_m", &Params::post_sides_max_extension_m},
-      {"post_sides_max_gap_m", &Params::post_sides_max_gap_m}};
+      {"post_sides_max_gap_m", &Params::post_sides_max_gap_m},
+      {"refine_narrow_max_width_m", &Params::refine_narrow_max_width_m},
+      {"refine_narrow_min_column_fill", &Params::refine_narrow_min_column_fill}};
   YAML::Node n;
   for (size_t i = 0; i < keys.size(); ++i) n[keys[i].first] = 0.25 + 0.1 * static_cast<double>(i);
   ConfigSection c(n, "stixel");
