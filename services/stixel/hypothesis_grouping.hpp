@@ -41,6 +41,7 @@ struct GroupingParams {
 struct GroupingInput {
   const cv::Mat* disparity = nullptr;
   const GroundModel* ground = nullptr;
+  const std::vector<Stixel>* posts = nullptr;  // stixels known to be posts (sign_plates.hpp): kept when alone
 };
 
 // stixels sorted by u (as extractStixels returns them). Hypotheses are numbered

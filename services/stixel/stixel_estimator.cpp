@@ -11,6 +11,7 @@
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
 #include "occluded_stixels.hpp"
+#include "sign_plates.hpp"
 #include "stixel_extraction.hpp"
 #include "v_disparity.hpp"
 
@@ -86,6 +87,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
   result.stixels = extractStixels(disparity, cam, result.ground, boundary, ep);
+  SignPlateParams sp;
+  sp.max_foot_height_m = params.sign_plate_max_foot_height_m;
+  sp.min_plate_bottom_m = params.sign_plate_min_bottom_m;
+  sp.min_plate_height_m = params.sign_plate_min_height_m;
+  sp.max_plate_width_m = params.sign_plate_max_width_m;
+  sp.min_row_fill = params.sign_plate_min_row_fill;
+  sp.depth_tolerance_m = params.refine_depth_tolerance_m;
+  const std::vector<Stixel> posts = raiseToSignPlates(disparity, cam, result.ground, result.stixels, sp);
   if (params.occluded_stixels) {
     const std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
     result.stixels.insert(result.stixels.end(), behind.begin(), behind.end());
@@ -136,7 +145,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.post_sides.max_gap_m = params.post_sides_max_gap_m;
   gp.post_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.post_sides.ground_tolerance_m = params.ground_tolerance_m;
-  result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground});
+  result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground, &posts});
   return result;
 }
 

@@ -17,6 +17,11 @@ Params readParams(ConfigSection& c) {
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
   c.get("occluded_stixels", p.occluded_stixels);
   c.get("occluded_nearest", p.occluded_nearest);
+  c.get("sign_plate_max_foot_height_m", p.sign_plate_max_foot_height_m, 0.0, 10.0);
+  c.get("sign_plate_min_bottom_m", p.sign_plate_min_bottom_m, 0.0, 10.0);
+  c.get("sign_plate_min_height_m", p.sign_plate_min_height_m, 0.01, 10.0);
+  c.get("sign_plate_max_width_m", p.sign_plate_max_width_m, 0.0, 10.0);
+  c.get("sign_plate_min_row_fill", p.sign_plate_min_row_fill, 0.01, 1.0);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
   c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);

@@ -1,7 +1,9 @@
 // Box sides of posts: a sign post narrower than its strip whose plate has
 // holes beside the post and in its rows gets the plate's width (post_sides.hpp);
 // a post without a plate keeps its own; the matcher's fattening beside a post
-// stays outside its box (box_refinement.hpp, narrow groups); the config keys.
+// stays outside its box (box_refinement.hpp, narrow groups); a sign whose post
+// the matcher lost is found from its foot and plate (sign_plates.hpp), a wide
+// face at the foot's depth is no plate; the config keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -107,6 +109,30 @@ TEST_F(stixelPostSides, APostsFattenedNeighbourColumnsStayOutsideItsBox) {
   EXPECT_EQ(h->box.x + h->box.w, post.u1);
 }
 
+TEST_F(stixelPostSides, ASignWhosePostIsLostIsFoundFromItsFootAndPlate) {
+  // A sign at 30 m in front of a wall at 45 m: the matcher kept the post's
+  // foot (0.5 m) and its 0.6 x 0.5 m plate at 2.3-2.8 m, not the post between.
+  const float z = 30.0f;
+  paintFace(disp, scene, cam, 45.0f, -6.0, 6.0, 0.0, 4.0);
+  paintFace(disp, scene, cam, z, -0.06, 0.06, 0.0, 0.5);
+  const FaceColumns plate = paintFace(disp, scene, cam, z, -0.3, 0.3, 2.3, 2.8);
+  const int plate_top = static_cast<int>(std::lround(footRow(scene, cam, z) - 2.8 * cam.fy / z));
+
+  Params off;
+  off.sign_plate_max_foot_height_m = 0.0f;
+  EXPECT_FALSE(postAt(estimateStixels(disp, cam, off).hypotheses, z).has_value())
+      << "without the rule the lone foot is dropped";
+  const std::optional<Hypothesis> h = postAt(estimateStixels(disp, cam, Params{}).hypotheses, z);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_NEAR(h->box.y, plate_top, 2);
+  EXPECT_NEAR(h->box.x, plate.u0, 2);
+  EXPECT_NEAR(h->box.x + h->box.w, plate.u1, 2);
+
+  // The same foot under a face 3 m wide at its depth (a crown, a bridge): no plate.
+  paintFace(disp, scene, cam, z, -1.5, 1.5, 2.3, 2.8);
+  EXPECT_FALSE(postAt(estimateStixels(disp, cam, Params{}).hypotheses, z).has_value());
+}
+
 TEST_F(stixelPostSides, KeysAreReadAndRangeChecked) {
   // Each key with a valid value it must be read as, then each below its range.
   const std::vector<std::pair<const char*, float Params::*>> keys = {
@@ -116,14 +142,19 @@ TEST_F(stixelPostSides, KeysAreReadAndRangeChecked) {
       {"post_sides_max_extension_m", &Params::post_sides_max_extension_m},
       {"post_sides_max_gap_m", &Params::post_sides_max_gap_m},
       {"refine_narrow_max_width_m", &Params::refine_narrow_max_width_m},
-      {"refine_narrow_min_column_fill", &Params::refine_narrow_min_column_fill}};
+      {"refine_narrow_min_column_fill", &Params::refine_narrow_min_column_fill},
+      {"sign_plate_max_foot_height_m", &Params::sign_plate_max_foot_height_m},
+      {"sign_plate_min_bottom_m", &Params::sign_plate_min_bottom_m},
+      {"sign_plate_min_height_m", &Params::sign_plate_min_height_m},
+      {"sign_plate_max_width_m", &Params::sign_plate_max_width_m},
+      {"sign_plate_min_row_fill", &Params::sign_plate_min_row_fill}};
   YAML::Node n;
-  for (size_t i = 0; i < keys.size(); ++i) n[keys[i].first] = 0.25 + 0.1 * static_cast<double>(i);
+  for (size_t i = 0; i < keys.size(); ++i) n[keys[i].first] = 0.25 + 0.05 * static_cast<double>(i);
   ConfigSection c(n, "stixel");
   const Params p = readParams(c);
   EXPECT_NO_THROW(c.finish());
   for (size_t i = 0; i < keys.size(); ++i)
-    EXPECT_FLOAT_EQ(p.*keys[i].second, 0.25f + 0.1f * static_cast<float>(i)) << keys[i].first;
+    EXPECT_FLOAT_EQ(p.*keys[i].second, static_cast<float>(0.25 + 0.05 * static_cast<double>(i))) << keys[i].first;
   for (const auto& [key, field] : keys) {
     YAML::Node bad;
     bad[key] = -1.0;
