@@ -45,6 +45,9 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   const int cols = disparity.cols, cw = std::max(1, column_width_px);
 
   // Left and right edges: scan the edge stixel's strip and the strip outside it.
+  const bool narrow = p.narrow_max_width_m > 0 &&
+                      (box.x1 - box.x0) * group.front()->depth_m / cam.fx <= p.narrow_max_width_m;
+  const float min_fill = narrow ? std::max(p.min_column_fill, p.narrow_min_column_fill) : p.min_column_fill;
   auto edgeOk = [&](const Stixel& s, int u) {
     if (u < 0 || u >= cols) return false;
     const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
@@ -55,7 +58,7 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
     const ColumnFill f = columnFill(disparity, ground, p.ground_tolerance_m, u, s.top_row, last,
                                     s.disparity - tol, s.disparity + tol);
     const float run_px = p.min_column_run_m > 0 ? p.min_column_run_m * static_cast<float>(cam.fy) / s.depth_m : 1e9f;
-    return f.count >= p.min_column_fill * rows || f.longest_run >= run_px;
+    return f.count >= min_fill * rows || f.longest_run >= run_px;
   };
   // How far an edge may move outside the group (the object continues outside).
   auto reach = [&](const Stixel& s) {

@@ -5,7 +5,12 @@
 // at the edge stixel's own disparity, and the top is lowered to the first row
 // where the object (pixels at the group's depths) fills enough of the box, so
 // a thin thing rising behind or above the object (a tree trunk, a facade at
-// nearly the same depth) does not stretch the box.
+// nearly the same depth) does not stretch the box. A post one or two strips
+// wide fills its own columns over most of its rows, but the matcher's
+// foreground fattening beside it and the road at its foot fill a quarter of
+// the rows of the columns next to it, so narrow groups ask more of an edge
+// column than vehicles and pedestrians, whose edge columns (wheels, legs) are
+// sparse.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -22,6 +27,8 @@ struct BoxRefinementParams {
   float depth_tolerance_m = 1.0f;   // a pixel belongs to a stixel within this depth [m] (>= 1 px)
   float ground_tolerance_m = 0.15f; // pixels this close to the road are road, not object [m]
   float min_column_fill = 0.25f;    // an edge column needs this share of the stixel's rows ...
+  float narrow_max_width_m = 0.0f;  // ... or, in a group at most this wide (a post; 0 = off) ...
+  float narrow_min_column_fill = 0.4f; // ... this share (fattening and the foot fill a quarter beside a post)
   float min_column_run_m = 0.0f;    // ... or a run of this many metres of them (a sign plate on its
                                     // post; 0 = off) ...
   float max_extension_m = 0.0f;     // ... and may continue this far outside the group (at least a strip)

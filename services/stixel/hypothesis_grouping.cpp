@@ -335,7 +335,11 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       const Stixel& s = *g.front();
       const bool tall_single = g.size() == 1 && p.min_single_stixel_height_m > 0 &&
                                (s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy >= p.min_single_stixel_height_m;
-      if (!tall_single) continue;
+      const bool post = g.size() == 1 && input.posts &&
+                        std::any_of(input.posts->begin(), input.posts->end(), [&](const Stixel& x) {
+                          return x.u == s.u && x.top_row == s.top_row && x.disparity == s.disparity;
+                        });
+      if (!tall_single && !post) continue;
     }
     int x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
     int y0 = g.front()->top_row, y1 = g.front()->bottom_row;
@@ -351,6 +355,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       PixelBox box{x0, x1, y0, y1};
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
                 p.tower_edges_above_surround ? clear_above[gi] : kNoSurround);
+      widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).

@@ -7,6 +7,7 @@
 
 #include "box_refinement.hpp"
 #include "overhang_cut.hpp"
+#include "post_sides.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
 
@@ -32,6 +33,7 @@ struct GroupingParams {
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;
+  PostSidesParams post_sides;          // sides of posts widened across matcher holes (post_sides.hpp)
   int column_width_px = 5;             // stixel strip width (refinement looks one strip outside)
 };
 
@@ -39,6 +41,7 @@ struct GroupingParams {
 struct GroupingInput {
   const cv::Mat* disparity = nullptr;
   const GroundModel* ground = nullptr;
+  const std::vector<Stixel>* posts = nullptr;  // stixels known to be posts (sign_plates.hpp): kept when alone
 };
 
 // stixels sorted by u (as extractStixels returns them). Hypotheses are numbered

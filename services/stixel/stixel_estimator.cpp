@@ -11,6 +11,7 @@
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
 #include "occluded_stixels.hpp"
+#include "sign_plates.hpp"
 #include "stixel_extraction.hpp"
 #include "v_disparity.hpp"
 
@@ -86,6 +87,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
   result.stixels = extractStixels(disparity, cam, result.ground, boundary, ep);
+  SignPlateParams sp;
+  sp.max_foot_height_m = params.sign_plate_max_foot_height_m;
+  sp.min_plate_bottom_m = params.sign_plate_min_bottom_m;
+  sp.min_plate_height_m = params.sign_plate_min_height_m;
+  sp.max_plate_width_m = params.sign_plate_max_width_m;
+  sp.min_row_fill = params.sign_plate_min_row_fill;
+  sp.depth_tolerance_m = params.refine_depth_tolerance_m;
+  const std::vector<Stixel> posts = raiseToSignPlates(disparity, cam, result.ground, result.stixels, sp);
   if (params.occluded_stixels) {
     const std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
     result.stixels.insert(result.stixels.end(), behind.begin(), behind.end());
@@ -124,10 +133,19 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.refinement.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.refinement.ground_tolerance_m = params.ground_tolerance_m;
   gp.refinement.min_column_fill = params.refine_min_column_fill;
+  gp.refinement.narrow_max_width_m = params.refine_narrow_max_width_m;
+  gp.refinement.narrow_min_column_fill = params.refine_narrow_min_column_fill;
   gp.refinement.min_row_fill = params.refine_min_row_fill;
   gp.refinement.min_column_run_m = params.refine_min_column_run_m;
   gp.refinement.max_extension_m = params.refine_max_extension_m;
-  result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground});
+  gp.post_sides.max_width_m = params.post_sides_max_width_m;
+  gp.post_sides.min_height_m = params.post_sides_min_height_m;
+  gp.post_sides.min_run_m = params.post_sides_min_run_m;
+  gp.post_sides.max_extension_m = params.post_sides_max_extension_m;
+  gp.post_sides.max_gap_m = params.post_sides_max_gap_m;
+  gp.post_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
+  gp.post_sides.ground_tolerance_m = params.ground_tolerance_m;
+  result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground, &posts});
   return result;
 }
 

@@ -17,6 +17,11 @@ Params readParams(ConfigSection& c) {
   c.get("group_lateral_gap_m", p.group_lateral_gap_m, 0.0, 100.0);
   c.get("occluded_stixels", p.occluded_stixels);
   c.get("occluded_nearest", p.occluded_nearest);
+  c.get("sign_plate_max_foot_height_m", p.sign_plate_max_foot_height_m, 0.0, 10.0);
+  c.get("sign_plate_min_bottom_m", p.sign_plate_min_bottom_m, 0.0, 10.0);
+  c.get("sign_plate_min_height_m", p.sign_plate_min_height_m, 0.01, 10.0);
+  c.get("sign_plate_max_width_m", p.sign_plate_max_width_m, 0.0, 10.0);
+  c.get("sign_plate_min_row_fill", p.sign_plate_min_row_fill, 0.01, 1.0);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
   c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);
@@ -48,9 +53,16 @@ Params readParams(ConfigSection& c) {
   c.get("refine_boxes", p.refine_boxes);
   c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);
   c.get("refine_min_column_fill", p.refine_min_column_fill, 0.0, 1.0);
+  c.get("refine_narrow_max_width_m", p.refine_narrow_max_width_m, 0.0, 10.0);
+  c.get("refine_narrow_min_column_fill", p.refine_narrow_min_column_fill, 0.0, 1.0);
   c.get("refine_min_row_fill", p.refine_min_row_fill, 0.0, 1.0);
   c.get("refine_min_column_run_m", p.refine_min_column_run_m, 0.0, 10.0);
   c.get("refine_max_extension_m", p.refine_max_extension_m, 0.0, 10.0);
+  c.get("post_sides_max_width_m", p.post_sides_max_width_m, 0.0, 10.0);
+  c.get("post_sides_min_height_m", p.post_sides_min_height_m, 0.0, 100.0);
+  c.get("post_sides_min_run_m", p.post_sides_min_run_m, 0.01, 10.0);
+  c.get("post_sides_max_extension_m", p.post_sides_max_extension_m, 0.0, 10.0);
+  c.get("post_sides_max_gap_m", p.post_sides_max_gap_m, 0.0, 10.0);
   if (p.min_camera_height_m >= p.max_camera_height_m)
     throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
   if (p.ground_tolerance_m >= p.min_camera_height_m)

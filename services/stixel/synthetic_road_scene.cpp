@@ -1,9 +1,22 @@
 #include "synthetic_road_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace nerv::stixel {
+
+FaceColumns paintFace(cv::Mat& disp, const RoadScene& scene, const StereoCamera& cam, float z_m, double x_left_m,
+                      double x_right_m, double bottom_m, double top_m) {
+  const double foot = footRow(scene, cam, z_m), px_per_m = cam.fx / z_m;
+  const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
+  const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
+  disp(cv::Range(std::max(0, static_cast<int>(std::lround(foot - top_m * px_per_m))),
+                 static_cast<int>(std::lround(foot - bottom_m * px_per_m))),
+       cv::Range(u0, u1))
+      .setTo(static_cast<float>(cam.fx * cam.baseline_m / z_m));
+  return {u0, u1};
+}
 
 StereoCamera kittiLikeCamera() {
   StereoCamera c;

@@ -30,6 +30,17 @@ cv::Mat renderDisparity(const RoadScene& scene, const StereoCamera& cam);
 // Row (sub-pixel) where the road point at level-frame depth z_m projects.
 double footRow(const RoadScene& scene, const StereoCamera& cam, double z_m);
 
+// Columns [u0, u1) of a face painted into `disp`.
+struct FaceColumns {
+  int u0 = 0, u1 = 0;
+};
+
+// Paints an upright face at level-frame depth z_m over [x_left_m, x_right_m] x
+// [bottom_m, top_m] over the road (a post, a plate, a crown floating over it)
+// with its exact disparity, rows clipped to the image top.
+FaceColumns paintFace(cv::Mat& disp, const RoadScene& scene, const StereoCamera& cam, float z_m, double x_left_m,
+                      double x_right_m, double bottom_m, double top_m);
+
 // KITTI raw 2011-09-26 colour camera pair.
 StereoCamera kittiLikeCamera();
 

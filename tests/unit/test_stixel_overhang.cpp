@@ -13,18 +13,6 @@
 namespace nerv::stixel {
 namespace {
 
-// Paints an upright face at depth z over [x_left_m, x_right_m] x [bottom_m, top_m] over the road.
-void paint(cv::Mat& disp, const RoadScene& scene, const StereoCamera& cam, float z, double x_left_m,
-           double x_right_m, double bottom_m, double top_m) {
-  const double foot = footRow(scene, cam, z), px_per_m = cam.fx / z;
-  const int u0 = static_cast<int>(std::lround(cam.cx + x_left_m * px_per_m));
-  const int u1 = static_cast<int>(std::lround(cam.cx + x_right_m * px_per_m));
-  disp(cv::Range(std::max(0, static_cast<int>(std::lround(foot - top_m * px_per_m))),
-                 static_cast<int>(std::lround(foot - bottom_m * px_per_m))),
-       cv::Range(u0, u1))
-      .setTo(static_cast<float>(cam.fx * cam.baseline_m / z));
-}
-
 // The hypothesis at depth z whose box holds column u (nullptr if none).
 const Hypothesis* at(const std::vector<Hypothesis>& hs, float z, int u) {
   for (const Hypothesis& h : hs)
@@ -38,8 +26,8 @@ TEST(stixelOverhang, APedestrianUnderATreeCrownGetsAPedestriansBox) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
   cv::Mat disp = renderDisparity(scene, cam);
-  paint(disp, scene, cam, 10.0f, -0.3, 0.3, 0.0, 1.75);
-  paint(disp, scene, cam, 10.0f, -1.5, 1.5, 2.0, 4.5);
+  paintFace(disp, scene, cam, 10.0f, -0.3, 0.3, 0.0, 1.75);
+  paintFace(disp, scene, cam, 10.0f, -1.5, 1.5, 2.0, 4.5);
   const int u = static_cast<int>(cam.cx);
   Params off;
   off.overhang_min_reach_m = 0.0f;
@@ -62,8 +50,8 @@ TEST(stixelOverhang, ASignPlateStaysInItsPostsBoxAndAWallBesideIsNoOverhang) {
     // 0.05 m beside the post, far less than an overhang.
     RoadScene scene;
     cv::Mat disp = renderDisparity(scene, cam);
-    paint(disp, scene, cam, 12.0f, -0.25, 0.25, 0.0, 3.0);
-    paint(disp, scene, cam, 12.0f, -0.3, 0.3, 2.4, 3.0);
+    paintFace(disp, scene, cam, 12.0f, -0.25, 0.25, 0.0, 3.0);
+    paintFace(disp, scene, cam, 12.0f, -0.3, 0.3, 2.4, 3.0);
     const Hypothesis* pole = at(estimateStixels(disp, cam, Params{}).hypotheses, 12.0f, u);
     ASSERT_NE(pole, nullptr);
     EXPECT_NEAR(pole->height_m, 3.0f, 0.2f);
@@ -79,9 +67,9 @@ TEST(stixelOverhang, ASignPlateStaysInItsPostsBoxAndAWallBesideIsNoOverhang) {
     for (const double wall_bottom_m : {2.0, 0.0}) {
       RoadScene scene;
       cv::Mat disp = renderDisparity(scene, cam);
-      paint(disp, scene, cam, 10.0f, -0.3, 0.3, 0.0, 1.8);
-      paint(disp, scene, cam, 10.0f, -0.3, 0.3, 2.0, 3.0);
-      paint(disp, scene, cam, 10.0f, 0.5, 3.0, wall_bottom_m, 3.0);
+      paintFace(disp, scene, cam, 10.0f, -0.3, 0.3, 0.0, 1.8);
+      paintFace(disp, scene, cam, 10.0f, -0.3, 0.3, 2.0, 3.0);
+      paintFace(disp, scene, cam, 10.0f, 0.5, 3.0, wall_bottom_m, 3.0);
       const Hypothesis* h = at(estimateStixels(disp, cam, p).hypotheses, 10.0f, u);
       ASSERT_NE(h, nullptr);
       EXPECT_NEAR(h->height_m, wall_bottom_m > 0 ? 1.8f : 3.0f, 0.15f) << "face from " << wall_bottom_m << " m";

@@ -438,6 +438,7 @@ TEST(stixelBoxes, SignPlateWidensItsPostsBox) {
   EXPECT_EQ(found, 1);
   Params off;
   off.refine_min_column_run_m = 0.0f;
+  off.post_sides_max_width_m = 0.0f;  // the post-side scan (post_sides.hpp) would widen it too
   for (const Hypothesis& h : estimateStixels(disp, cam, off).hypotheses) {
     if (std::abs(h.z_m - z) < 0.5f) {
       EXPECT_GT(h.box.x, plate.first + 4) << "without runs the plate is not in the box";

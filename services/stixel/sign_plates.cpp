@@ -1,0 +1,63 @@
+#include "sign_plates.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nerv::stixel {
+
+namespace {
+
+// Share of columns [u0, u1) of row v whose disparity is within tol of d.
+float rowShare(const cv::Mat& disparity, int v, int u0, int u1, float d, float tol) {
+  u0 = std::max(u0, 0), u1 = std::min(u1, disparity.cols);
+  if (u1 <= u0) return 0.0f;
+  const float* row = disparity.ptr<float>(v);
+  int n = 0;
+  for (int u = u0; u < u1; ++u) n += std::abs(row[u] - d) <= tol ? 1 : 0;
+  return static_cast<float>(n) / static_cast<float>(u1 - u0);
+}
+
+}  // namespace
+
+std::vector<Stixel> raiseToSignPlates(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& g,
+                                      std::vector<Stixel>& stixels, const SignPlateParams& p) {
+  std::vector<Stixel> raised;
+  if (p.max_foot_height_m <= 0 || disparity.empty() || !g.valid) return raised;
+  const double fb = cam.fx * cam.baseline_m;
+  const float a = g.vd_slope, b = g.vd_intercept, h = g.height_m;
+  // Row where a point of disparity d is height_m over the road.
+  auto rowAt = [&](float d, float height_m) { return (d * (1.0f - height_m / h) - b) / a; };
+  for (Stixel& s : stixels) {
+    const double z = s.depth_m;
+    const double px_per_m = cam.fy / z;
+    if ((s.bottom_row - s.top_row + 1) / px_per_m > p.max_foot_height_m) continue;
+    const float d = s.disparity;
+    const float tol = std::max(1.0f, static_cast<float>(d * d * p.depth_tolerance_m / fb));
+    const int lowest = std::min(s.top_row - 1, static_cast<int>(std::floor(rowAt(d, p.min_plate_bottom_m))));
+    const int highest = std::max(0, static_cast<int>(std::ceil(rowAt(d, p.max_plate_top_m))));
+    const int side = static_cast<int>(std::lround(p.max_plate_width_m * cam.fx / z));
+    const int need_rows = std::max(2, static_cast<int>(std::lround(p.min_plate_height_m * px_per_m)));
+    auto plateRow = [&](int v) {
+      return rowShare(disparity, v, s.u, s.u + s.width, d, tol) >= p.min_row_fill &&
+             rowShare(disparity, v, s.u - side - s.width, s.u - side, d, tol) <= p.max_side_fill &&
+             rowShare(disparity, v, s.u + s.width + side, s.u + 2 * s.width + side, d, tol) <= p.max_side_fill;
+    };
+    // The lowest run of plate rows (one missing row bridged) above the foot.
+    int run_bottom = -1, run_top = -1, misses = 0;
+    for (int v = lowest; v >= highest; --v) {
+      if (plateRow(v)) {
+        if (run_bottom < 0) run_bottom = v;
+        run_top = v, misses = 0;
+      } else if (run_bottom >= 0 && ++misses > 1) {
+        if (run_bottom - run_top + 1 >= need_rows) break;
+        run_bottom = run_top = -1, misses = 0;
+      }
+    }
+    if (run_bottom < 0 || run_bottom - run_top + 1 < need_rows) continue;
+    s.top_row = run_top;
+    raised.push_back(s);
+  }
+  return raised;
+}
+
+}  // namespace nerv::stixel
