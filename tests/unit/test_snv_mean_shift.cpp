@@ -175,6 +175,10 @@ TEST(snvSuperSnvFast, SortAnglesEqualsStdSort) {
   for (int i = 0; i < 5000; ++i) dup.push_back(static_cast<float>(rng() % 7) / 16.0f);
   outlier.push_back(1e30f);
   outlier.push_back(-1e30f);
+  std::vector<float> huge = skewedSample(5000, 0.5f, 10);  // a range that overflows float
+  huge.push_back(3e38f);
+  huge.push_back(-3e38f);
+  expectSorted(huge, "huge range");
   for (int i = 0; i < 3000; ++i) geometric.push_back(std::ldexp(1.0f, -(i % 120)) * (i % 3 ? 1.0f : -1.0f));
   for (int i = 0; i < 3000; ++i) tiny.push_back(std::nextafter(1.0f, 2.0f + static_cast<float>(rng() % 3)));
   expectSorted(dup, "duplicates");
