@@ -119,6 +119,13 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;
+  gp.height_steps.min_step_m = params.height_step_min_m;
+  gp.height_steps.max_width_m = params.height_step_max_width_m;
+  gp.height_steps.min_height_m = params.height_step_min_height_m;
+  gp.height_steps.max_height_m = params.height_step_max_height_m;
+  gp.height_steps.min_rest_stixels = params.height_step_min_rest_stixels;
+  gp.height_steps.min_rest_width_m = params.height_step_min_rest_width_m;
+  gp.height_steps.max_distance_m = params.height_step_max_distance_m;
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

@@ -44,6 +44,13 @@ Params readParams(ConfigSection& c) {
   c.get("object_depth_tolerance_m", p.object_depth_tolerance_m, 0.01, 100.0);
   c.get("max_stixel_height_m", p.max_stixel_height_m, 0.1, 100.0);
   c.get("min_single_stixel_height_m", p.min_single_stixel_height_m, 0.0, 100.0);
+  c.get("height_step_min_m", p.height_step_min_m, 0.0, 10.0);
+  c.get("height_step_max_width_m", p.height_step_max_width_m, 0.0, 10.0);
+  c.get("height_step_min_height_m", p.height_step_min_height_m, 0.0, 10.0);
+  c.get("height_step_max_height_m", p.height_step_max_height_m, 0.0, 10.0);
+  c.get("height_step_min_rest_stixels", p.height_step_min_rest_stixels, 1, 1000);
+  c.get("height_step_min_rest_width_m", p.height_step_min_rest_width_m, 0.0, 10.0);
+  c.get("height_step_max_distance_m", p.height_step_max_distance_m, 0.0, 1e9);
   c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
   c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
   c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);
