@@ -26,7 +26,7 @@ float median(std::vector<float> v) {
 
 int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& cam,
                    const GroundModel* ground, const HeightStepParams& p) {
-  if (p.min_step_m <= 0 || group.size() < 2) return -1;
+  if ((p.min_step_m <= 0 && p.min_depth_step_m <= 0) || group.size() < 2) return -1;
   // One stixel per strip: the nearest (an occluded one above it is another object).
   const std::vector<const Stixel*> s = nearestPerStrip(group);
   const size_t n = s.size();
@@ -43,8 +43,8 @@ int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& 
   for (size_t k = 0; k < n; ++k) h[k] = topHeightOf(*s[k], cam, ground);
 
   // Ends of k strips, on the left (from_left) or the right; the best step wins.
-  float best = p.min_step_m;
-  int cut_u = -1;
+  float best = p.min_step_m, best_px = 0;
+  int cut_u = -1, depth_cut_u = -1;
   for (int from_left = 0; from_left < 2; ++from_left) {
     for (size_t k = 1; k + rest <= n; ++k) {
       // End strips [a, b), rest [c, d); `next` is the rest's strip at the cut.
@@ -57,14 +57,33 @@ int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& 
           (s[d - 1]->u + s[d - 1]->width - s[c]->u) * s[c]->depth_m / static_cast<float>(cam.fx);
       if (rest_width_m < p.min_rest_width_m) continue;
       const float end_h = median(std::vector<float>(h.begin() + a, h.begin() + b));
-      if (end_h < p.min_height_m || end_h > p.max_height_m) continue;
-      const float rest_h = std::max(h[next], median(std::vector<float>(h.begin() + c, h.begin() + d)));
-      // Ties go to the narrower end (a strip more of the vehicle is not the road user).
-      if (end_h - rest_h > best || (cut_u < 0 && end_h - rest_h >= best))
-        best = end_h - rest_h, cut_u = s[from_left ? k : n - k]->u;
+      if (end_h > p.max_height_m) continue;
+      const int cut = s[from_left ? k : n - k]->u;
+      if (p.min_step_m > 0 && end_h >= p.min_height_m) {
+        const float rest_h = std::max(h[next], median(std::vector<float>(h.begin() + c, h.begin() + d)));
+        // Ties go to the narrower end (a strip more of the vehicle is not the road user).
+        if (end_h - rest_h > best || (cut_u < 0 && end_h - rest_h >= best)) best = end_h - rest_h, cut_u = cut;
+      }
+      // Depth: a flat end whose two neighbours in the rest are both farther
+      // by a clear disparity step (the grouping gap joined them).
+      if (p.min_depth_step_m <= 0 || end_h < p.depth_step_min_height_m || d - c < 2) continue;
+      float lo = s[a]->disparity, hi = lo;
+      std::vector<float> ed;
+      for (size_t j = a; j < b; ++j) lo = std::min(lo, s[j]->disparity), hi = std::max(hi, s[j]->disparity), ed.push_back(s[j]->disparity);
+      if (hi - lo > p.max_end_spread_px) continue;
+      const float end_d = median(ed);
+      const size_t next2 = from_left ? k + 1 : n - k - 2;
+      const float d1 = s[next]->disparity - end_d, d2 = s[next2]->disparity - end_d;
+      // Only an end nearer than the rest: an end farther than its
+      // neighbours is as often a vehicle's receding side (a van's) as a
+      // road user behind it.
+      const float step_px = std::min(-d1, -d2);
+      const float step_m = static_cast<float>(cam.depthFromDisparity(end_d - step_px) - cam.depthFromDisparity(end_d));
+      if (step_px >= p.min_depth_step_px && step_m >= p.min_depth_step_m && step_px > best_px)
+        best_px = step_px, depth_cut_u = cut;
     }
   }
-  return cut_u;
+  return cut_u >= 0 ? cut_u : depth_cut_u;
 }
 
 }  // namespace nerv::stixel

@@ -8,6 +8,12 @@
 // min_step_m above the strips next to them and above the rest of the group
 // (median), and are themselves of a person's height, is cut there: the end
 // becomes a hypothesis of its own, and its box is kept off the rest's columns.
+// Nearer than ~30 m the matcher often loses the top of a head, so the height
+// step shrinks below noise; there the depth still tells: an end flat in
+// disparity and nearer than its two neighbours by min_depth_step_m (and
+// min_depth_step_px) is cut as well (the grouping's 1.5 m gap joined them).
+// Only nearer ends: a vehicle's receding side is a narrow end farther than
+// its neighbours.
 #pragma once
 
 #include <vector>
@@ -25,6 +31,10 @@ struct HeightStepParams {
   int min_rest_stixels = 2;         // the lower part keeps at least this many strips ...
   float min_rest_width_m = 0.7f;    // ... and this width [m] (a vehicle, not a pedestrian's shoulder)
   float max_distance_m = 1e9f;      // farther groups stay whole (there one disparity step is metres)
+  float min_depth_step_m = 0.0f;    // or: a flat end nearer than its two neighbours by this [m] (0 = off) ...
+  float min_depth_step_px = 0.8f;   // ... and this many px (above the stixels' disparity noise) ...
+  float max_end_spread_px = 0.5f;   // ... flat: its stixels' disparities within this [px] ...
+  float depth_step_min_height_m = 1.5f; // ... and at least this tall (up to max_height_m)
 };
 
 // group: the stixels of one group, left to right (both layers; per strip the

@@ -126,6 +126,10 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.height_steps.min_rest_stixels = params.height_step_min_rest_stixels;
   gp.height_steps.min_rest_width_m = params.height_step_min_rest_width_m;
   gp.height_steps.max_distance_m = params.height_step_max_distance_m;
+  gp.height_steps.min_depth_step_m = params.depth_step_min_m;
+  gp.height_steps.min_depth_step_px = params.depth_step_min_px;
+  gp.height_steps.max_end_spread_px = params.depth_step_max_spread_px;
+  gp.height_steps.depth_step_min_height_m = params.depth_step_min_height_m;
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

@@ -51,6 +51,10 @@ Params readParams(ConfigSection& c) {
   c.get("height_step_min_rest_stixels", p.height_step_min_rest_stixels, 1, 1000);
   c.get("height_step_min_rest_width_m", p.height_step_min_rest_width_m, 0.0, 10.0);
   c.get("height_step_max_distance_m", p.height_step_max_distance_m, 0.0, 1e9);
+  c.get("depth_step_min_m", p.depth_step_min_m, 0.0, 100.0);
+  c.get("depth_step_min_px", p.depth_step_min_px, 0.0, 100.0);
+  c.get("depth_step_max_spread_px", p.depth_step_max_spread_px, 0.0, 100.0);
+  c.get("depth_step_min_height_m", p.depth_step_min_height_m, 0.0, 10.0);
   c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
   c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
   c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);

@@ -1,6 +1,7 @@
-// Road users beside a lower vehicle at its depth (height_steps.hpp): a cyclist
-// beside a parked car on rendered disparity leaves the car's box, a car alone,
-// a van's tall body and a pedestrian beside a taller wall stay whole; the keys.
+// Road users beside a vehicle at about its depth (height_steps.hpp): a cyclist
+// beside a lower parked car, or nearer than it, on rendered disparity leaves the
+// car's box; a car alone, a van's tall body, a van's receding side and a
+// pedestrian beside a taller wall stay whole; the keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -23,37 +24,37 @@ std::vector<Hypothesis> at(const std::vector<Hypothesis>& hs, float z, int u) {
   return out;
 }
 
-Params on() {
-  Params p;
-  p.height_step_min_m = 0.25f;
-  return p;
-}
-
-TEST(stixelHeightSteps, ACyclistBesideAParkedCarGetsItsOwnBox) {
-  // A cyclist seen from behind (0.6 m wide, 1.8 m tall) at 25 m, a parked car
-  // (1.8 m wide, 1.45 m tall) right beside it at 26 m: one group by depth.
+// A cyclist seen from behind (0.6 m wide) at z_bike, a parked car (1.8 m
+// wide) right beside it at z_car: one box with `off`, two with the defaults.
+void expectCyclistLeavesTheCar(float z_bike, float bike_top_m, float z_car, float car_top_m, const Params& off) {
   const StereoCamera cam = kittiLikeCamera();
   RoadScene scene;
   cv::Mat disp = renderDisparity(scene, cam);
-  const FaceColumns bike = paintFace(disp, scene, cam, 25.0f, -0.3, 0.3, 0.0, 1.8);
-  paintFace(disp, scene, cam, 26.0f, 0.3, 2.1, 0.0, 1.45);
-  Params off = on();
-  off.height_step_min_m = 0.0f;
+  const FaceColumns bike = paintFace(disp, scene, cam, z_bike, -0.3, 0.3, 0.0, bike_top_m);
+  paintFace(disp, scene, cam, z_car, 0.3, 2.1, 0.0, car_top_m);
   const int u = static_cast<int>(cam.cx);
-  const auto merged = at(estimateStixels(disp, cam, off).hypotheses, 25.5f, u);
+  const auto merged = at(estimateStixels(disp, cam, off).hypotheses, 0.5f * (z_bike + z_car), u);
   ASSERT_EQ(merged.size(), 1u);
   EXPECT_GT(merged[0].width_m, 1.8f) << "without the rule cyclist and car share one box";
 
-  const auto hs = estimateStixels(disp, cam, on()).hypotheses;
-  const auto cyclist = at(hs, 25.0f, u);
+  const auto hs = estimateStixels(disp, cam, Params{}).hypotheses;
+  const auto cyclist = at(hs, z_bike, u);
   ASSERT_EQ(cyclist.size(), 1u);
   EXPECT_NEAR(cyclist[0].box.x, bike.u0, 3);
   EXPECT_NEAR(cyclist[0].box.x + cyclist[0].box.w, bike.u1, 5);  // strip-quantised at the cut
-  EXPECT_NEAR(cyclist[0].height_m, 1.8f, 0.15f);
-  const auto car = at(hs, 26.0f, bike.u1 + 20);
+  EXPECT_NEAR(cyclist[0].height_m, bike_top_m, 0.15f);
+  const auto car = at(hs, z_car, bike.u1 + 20);
   ASSERT_EQ(car.size(), 1u);
-  EXPECT_NEAR(car[0].height_m, 1.45f, 0.15f);
+  EXPECT_NEAR(car[0].height_m, car_top_m, 0.15f);
   EXPECT_GE(car[0].box.x, cyclist[0].box.x + cyclist[0].box.w) << "the car's box stays off the cyclist";
+}
+
+TEST(stixelHeightSteps, ACyclistBesideAParkedCarGetsItsOwnBox) {
+  // 1.8 m over a 1.45 m car 1 m behind it at 25 m (0.6 px: no depth step).
+  Params off;
+  off.height_step_min_m = 0.0f;
+  off.depth_step_min_m = 0.0f;
+  expectCyclistLeavesTheCar(25.0f, 1.8f, 26.0f, 1.45f, off);
 }
 
 TEST(stixelHeightSteps, ACarAVanAndAPedestrianBesideAWallStayWhole) {
@@ -72,8 +73,8 @@ TEST(stixelHeightSteps, ACarAVanAndAPedestrianBesideAWallStayWhole) {
     RoadScene scene;
     cv::Mat disp = renderDisparity(scene, cam);
     for (const Face& f : scenes[k]) paintFace(disp, scene, cam, 20.0f, f.x0, f.x1, 0.0, f.top);
-    EXPECT_EQ(at(estimateStixels(disp, cam, on()).hypotheses, 20.0f, u).size(), 1u) << "scene " << k;
-    std::vector<Hypothesis> hs = estimateStixels(disp, cam, on()).hypotheses;
+    EXPECT_EQ(at(estimateStixels(disp, cam, Params{}).hypotheses, 20.0f, u).size(), 1u) << "scene " << k;
+    std::vector<Hypothesis> hs = estimateStixels(disp, cam, Params{}).hypotheses;
     int near = 0;
     for (const Hypothesis& h : hs) near += std::abs(h.z_m - 20.0f) < 1.5f ? 1 : 0;
     EXPECT_EQ(near, 1) << "scene " << k << " was cut";
@@ -114,6 +115,36 @@ TEST(stixelHeightSteps, GroupingCutsOnlyAPersonSizedTallEnd) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u) << "off";
 }
 
+TEST(stixelHeightSteps, ACyclistNearerThanTheCarBesideItGetsItsOwnBox) {
+  // 1.6 m (little above the 1.5 m car: no height step) at 20 m, the car 1.3 m
+  // farther (1.2 px): joined by the 1.5 m grouping gap, cut by the depth step.
+  Params off;
+  off.depth_step_min_m = 0.0f;
+  expectCyclistLeavesTheCar(20.0f, 1.6f, 21.3f, 1.5f, off);
+}
+
+TEST(stixelHeightSteps, AVansRecedingSideIsNoRoadUser) {
+  // A van's rear (2 m tall, 5 strips at 20 m) with its side receding behind
+  // it on the right (2 strips, 1.5 m and 3 m farther): a narrow, person-tall
+  // end with a depth step, but farther than its neighbours, so it stays.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  p.height_steps.min_step_m = 0.25f;
+  p.height_steps.min_depth_step_m = 1.0f;
+  p.side_max_stixels = 0;
+  std::vector<Stixel> st;
+  for (int k = 0; k < 7; ++k) {
+    const float z = k < 5 ? 20.0f : k == 5 ? 21.4f : 21.8f;
+    Stixel s;
+    s.u = 600 + 5 * k, s.width = 5, s.depth_m = z;
+    s.disparity = static_cast<float>(cam.disparityFromDepth(z));
+    s.bottom_row = 250;
+    s.top_row = s.bottom_row - static_cast<int>(1.9f * cam.fy / z);
+    st.push_back(s);
+  }
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
+}
+
 TEST(stixelHeightSteps, KeysAreReadAndRangeChecked) {
   YAML::Node n;
   n["height_step_min_m"] = 0.3;
@@ -123,6 +154,10 @@ TEST(stixelHeightSteps, KeysAreReadAndRangeChecked) {
   n["height_step_min_rest_stixels"] = 3;
   n["height_step_min_rest_width_m"] = 0.8;
   n["height_step_max_distance_m"] = 35.0;
+  n["depth_step_min_m"] = 1.2;
+  n["depth_step_min_px"] = 0.7;
+  n["depth_step_max_spread_px"] = 0.4;
+  n["depth_step_min_height_m"] = 1.4;
   ConfigSection c(n, "stixel");
   const Params p = readParams(c);
   EXPECT_NO_THROW(c.finish());
@@ -133,9 +168,14 @@ TEST(stixelHeightSteps, KeysAreReadAndRangeChecked) {
   EXPECT_EQ(p.height_step_min_rest_stixels, 3);
   EXPECT_FLOAT_EQ(p.height_step_min_rest_width_m, 0.8f);
   EXPECT_FLOAT_EQ(p.height_step_max_distance_m, 35.0f);
+  EXPECT_FLOAT_EQ(p.depth_step_min_m, 1.2f);
+  EXPECT_FLOAT_EQ(p.depth_step_min_px, 0.7f);
+  EXPECT_FLOAT_EQ(p.depth_step_max_spread_px, 0.4f);
+  EXPECT_FLOAT_EQ(p.depth_step_min_height_m, 1.4f);
   for (const char* key : {"height_step_min_m", "height_step_max_width_m", "height_step_min_height_m",
                           "height_step_max_height_m", "height_step_min_rest_stixels",
-                          "height_step_min_rest_width_m", "height_step_max_distance_m"}) {
+                          "height_step_min_rest_width_m", "height_step_max_distance_m", "depth_step_min_m",
+                          "depth_step_min_px", "depth_step_max_spread_px", "depth_step_min_height_m"}) {
     expectRejected(key, -1.0);
   }
 }
