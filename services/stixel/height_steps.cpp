@@ -8,21 +8,20 @@ namespace nerv::stixel {
 
 namespace {
 
-// Height of the stixel's top over the road: from the road line's row at its
-// disparity, not from its bottom row, which for a stixel seen above an
-// occluder is the occluder's top (its visible height says nothing).
-float topHeightOf(const Stixel& s, const StereoCamera& cam, const GroundModel* g) {
-  double foot = s.bottom_row + 1;
-  if (g && g->valid && g->vd_slope > 0) foot = std::max(foot, static_cast<double>((s.disparity - g->vd_intercept) / g->vd_slope));
-  return static_cast<float>((foot - s.top_row) * s.depth_m / cam.fy);
-}
-
 float median(std::vector<float> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
 }
 
 }  // namespace
+
+// From the road line's row at the stixel's disparity, not from its bottom
+// row, which for a stixel seen above an occluder is the occluder's top.
+float topHeightOverRoad(const Stixel& s, const StereoCamera& cam, const GroundModel* g) {
+  double foot = s.bottom_row + 1;
+  if (g && g->valid && g->vd_slope > 0) foot = std::max(foot, static_cast<double>((s.disparity - g->vd_intercept) / g->vd_slope));
+  return static_cast<float>((foot - s.top_row) * s.depth_m / cam.fy);
+}
 
 int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& cam,
                    const GroundModel* ground, const HeightStepParams& p) {
@@ -40,7 +39,7 @@ int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& 
   for (const Stixel* x : s)
     if (x->bottom_row >= cam.height - 2) return -1;
   std::vector<float> h(n);
-  for (size_t k = 0; k < n; ++k) h[k] = topHeightOf(*s[k], cam, ground);
+  for (size_t k = 0; k < n; ++k) h[k] = topHeightOverRoad(*s[k], cam, ground);
 
   // Ends of k strips, on the left (from_left) or the right; the best step wins.
   float best = p.min_step_m, best_px = 0;

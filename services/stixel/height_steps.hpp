@@ -37,6 +37,9 @@ struct HeightStepParams {
   float depth_step_min_height_m = 1.5f; // ... and at least this tall (up to max_height_m)
 };
 
+// Height of a stixel's top over the road [m] (without a ground: its visible height).
+float topHeightOverRoad(const Stixel& s, const StereoCamera& cam, const GroundModel* ground);
+
 // group: the stixels of one group, left to right (both layers; per strip the
 // nearest one counts). Heights are those of the stixel tops over the road
 // (ground's line; without a ground, the stixels' visible heights). Returns the

@@ -311,7 +311,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
 
-  // Road users beside a lower vehicle at its depth; after the joins, so a
+  // Road users beside a vehicle at about its depth, and two pedestrians
+  // side by side; after the joins, so a
   // vehicle's side cannot bring the cut part back. Each part's box stays on
   // its side of the cut (the refinement would otherwise extend it over the
   // other part's columns, which are at its depth).
@@ -319,7 +320,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   std::vector<int> max_x(groups.size(), std::numeric_limits<int>::max());
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     if (tower[gi]) continue;
-    const int cut_u = findHeightStep(groups[gi], cam, input.ground, p.height_steps);
+    int cut_u = findHeightStep(groups[gi], cam, input.ground, p.height_steps);
+    if (cut_u < 0) cut_u = findPersonPair(groups[gi], cam, input.ground, p.person_pairs);
     if (cut_u < 0) continue;
     std::vector<const Stixel*> a, b;
     for (const Stixel* x : groups[gi]) (x->u < cut_u ? a : b).push_back(x);

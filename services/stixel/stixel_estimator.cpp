@@ -130,6 +130,13 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.height_steps.min_depth_step_px = params.depth_step_min_px;
   gp.height_steps.max_end_spread_px = params.depth_step_max_spread_px;
   gp.height_steps.depth_step_min_height_m = params.depth_step_min_height_m;
+  gp.person_pairs.min_step_px = params.person_pair_min_step_px;
+  gp.person_pairs.min_step_m = params.person_pair_min_step_m;
+  gp.person_pairs.min_width_m = params.person_pair_min_width_m;
+  gp.person_pairs.max_width_m = params.person_pair_max_width_m;
+  gp.person_pairs.min_height_m = params.person_pair_min_height_m;
+  gp.person_pairs.max_height_m = params.person_pair_max_height_m;
+  gp.person_pairs.max_spread_px = params.person_pair_max_spread_px;
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

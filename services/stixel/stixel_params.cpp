@@ -55,6 +55,13 @@ Params readParams(ConfigSection& c) {
   c.get("depth_step_min_px", p.depth_step_min_px, 0.0, 100.0);
   c.get("depth_step_max_spread_px", p.depth_step_max_spread_px, 0.0, 100.0);
   c.get("depth_step_min_height_m", p.depth_step_min_height_m, 0.0, 10.0);
+  c.get("person_pair_min_step_px", p.person_pair_min_step_px, 0.0, 100.0);
+  c.get("person_pair_min_step_m", p.person_pair_min_step_m, 0.0, 100.0);
+  c.get("person_pair_min_width_m", p.person_pair_min_width_m, 0.0, 10.0);
+  c.get("person_pair_max_width_m", p.person_pair_max_width_m, 0.0, 10.0);
+  c.get("person_pair_min_height_m", p.person_pair_min_height_m, 0.0, 10.0);
+  c.get("person_pair_max_height_m", p.person_pair_max_height_m, 0.0, 10.0);
+  c.get("person_pair_max_spread_px", p.person_pair_max_spread_px, 0.0, 100.0);
   c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
   c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
   c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);
