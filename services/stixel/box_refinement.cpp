@@ -39,7 +39,7 @@ ColumnFill columnFill(const cv::Mat& disp, const GroundModel& g, float road_tol_
 
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
-               const BoxRefinementParams& p, PixelBox& box, int edge_rows_above) {
+               const BoxRefinementParams& p, PixelBox& box, int edge_rows_above, int min_x, int max_x) {
   if (group.empty() || disparity.empty()) return;
   const double fb = cam.fx * cam.baseline_m;
   const int cols = disparity.cols, cw = std::max(1, column_width_px);
@@ -86,6 +86,8 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
       x1 = u + 1;
     }
   }
+  x0 = std::max(x0, min_x);
+  x1 = std::min(x1, max_x);
   if (x1 - x0 < 1) return;
 
   // Top: first row (from the union's top down) where pixels at the group's

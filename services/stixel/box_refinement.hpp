@@ -46,10 +46,12 @@ struct PixelBox {
 // edge_rows_above: the edges are judged only on the stixel rows above this
 // row (a post standing in a hedge: below the hedge's top the columns beside
 // the post are at the post's depth too), when at least a quarter of the
-// stixel's rows lie above it; default: all rows.
+// stixel's rows lie above it; default: all rows. The edges never leave
+// [min_x, max_x) (a group cut beside another object at its depth).
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
                const BoxRefinementParams& p, PixelBox& box,
-               int edge_rows_above = std::numeric_limits<int>::max());
+               int edge_rows_above = std::numeric_limits<int>::max(),
+               int min_x = std::numeric_limits<int>::min(), int max_x = std::numeric_limits<int>::max());
 
 }  // namespace nerv::stixel

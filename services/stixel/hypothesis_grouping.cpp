@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "nearest_per_strip.hpp"
+
 namespace nerv::stixel {
 
 namespace {
@@ -169,13 +171,7 @@ void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     const auto& g = groups[gi];
     if (tower[gi] || g.size() < 2 * kRun) continue;
     // One stixel per strip (the nearest), contiguous strips only.
-    std::vector<const Stixel*> s;
-    for (const Stixel* x : g)
-      if (!s.empty() && s.back()->u == x->u) {
-        if (x->depth_m < s.back()->depth_m) s.back() = x;
-      } else {
-        s.push_back(x);
-      }
+    const std::vector<const Stixel*> s = nearestPerStrip(g);
     if (s.size() < 2 * kRun) continue;
     float zmin = s[0]->depth_m, zmax = zmin;
     std::vector<float> h;
@@ -315,6 +311,30 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
 
+  // Road users beside a vehicle at about its depth, and two pedestrians
+  // side by side; after the joins, so a
+  // vehicle's side cannot bring the cut part back. Each part's box stays on
+  // its side of the cut (the refinement would otherwise extend it over the
+  // other part's columns, which are at its depth).
+  std::vector<int> min_x(groups.size(), std::numeric_limits<int>::min());
+  std::vector<int> max_x(groups.size(), std::numeric_limits<int>::max());
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    if (tower[gi]) continue;
+    int cut_u = findHeightStep(groups[gi], cam, input.ground, p.height_steps);
+    if (cut_u < 0) cut_u = findPersonPair(groups[gi], cam, input.ground, p.person_pairs);
+    if (cut_u < 0) continue;
+    std::vector<const Stixel*> a, b;
+    for (const Stixel* x : groups[gi]) (x->u < cut_u ? a : b).push_back(x);
+    groups[gi] = a;
+    groups.insert(groups.begin() + static_cast<long>(gi) + 1, b);
+    tower.insert(tower.begin() + static_cast<long>(gi) + 1, false);
+    clear_above.insert(clear_above.begin() + static_cast<long>(gi) + 1, kNoSurround);
+    min_x.insert(min_x.begin() + static_cast<long>(gi) + 1, cut_u);
+    max_x.insert(max_x.begin() + static_cast<long>(gi) + 1, max_x[gi]);
+    max_x[gi] = cut_u;
+    ++gi;  // the right part is not cut again
+  }
+
   // Overhangs last: a tree's trunk must still be a structure when the
   // structure split runs, or the pedestrian beside it stays in its group.
   if (p.overhang.min_reach_m > 0 && input.disparity && input.ground) {
@@ -354,8 +374,10 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     if (p.refine_boxes && input.disparity && input.ground) {
       PixelBox box{x0, x1, y0, y1};
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
-                p.tower_edges_above_surround ? clear_above[gi] : kNoSurround);
+                p.tower_edges_above_surround ? clear_above[gi] : kNoSurround, min_x[gi], max_x[gi]);
       widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
+      box.x0 = std::max(box.x0, min_x[gi]);
+      box.x1 = std::min(box.x1, max_x[gi]);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Representative disparity: the median stixel (robust to one wrong stixel).

@@ -1,0 +1,60 @@
+#include "person_pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "height_steps.hpp"
+#include "nearest_per_strip.hpp"
+
+namespace nerv::stixel {
+
+namespace {
+
+struct Part {
+  float width_m = 0, median_h = 0, median_d = 0, spread_px = 0;
+};
+
+Part describe(const std::vector<const Stixel*>& s, size_t a, size_t b, const StereoCamera& cam,
+              const GroundModel* ground) {
+  Part part;
+  std::vector<float> h, d;
+  for (size_t k = a; k < b; ++k) h.push_back(topHeightOverRoad(*s[k], cam, ground)), d.push_back(s[k]->disparity);
+  const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+  part.spread_px = *hi - *lo;
+  std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  part.median_h = h[h.size() / 2];
+  part.median_d = d[d.size() / 2];
+  part.width_m = (s[b - 1]->u + s[b - 1]->width - s[a]->u) * s[a]->depth_m / static_cast<float>(cam.fx);
+  return part;
+}
+
+}  // namespace
+
+int findPersonPair(const std::vector<const Stixel*>& group, const StereoCamera& cam,
+                   const GroundModel* ground, const PersonPairParams& p) {
+  if (p.min_step_px <= 0 || group.size() < 2) return -1;
+  const std::vector<const Stixel*> s = nearestPerStrip(group);
+  const size_t n = s.size();
+  if (n < 2) return -1;
+  for (const Stixel* x : s)
+    if (x->bottom_row >= cam.height - 2) return -1;  // cut by the image's bottom edge
+  const float total_m = (s[n - 1]->u + s[n - 1]->width - s[0]->u) * s[0]->depth_m / static_cast<float>(cam.fx);
+  if (total_m > 2 * p.max_width_m) return -1;
+  auto person = [&](const Part& x) {
+    return x.width_m >= p.min_width_m && x.width_m <= p.max_width_m && x.median_h >= p.min_height_m &&
+           x.median_h <= p.max_height_m && x.spread_px <= p.max_spread_px;
+  };
+  float best = 0;
+  int cut_u = -1;
+  for (size_t k = 1; k < n; ++k) {
+    const Part l = describe(s, 0, k, cam, ground), r = describe(s, k, n, cam, ground);
+    if (!person(l) || !person(r)) continue;
+    const float step_px = std::abs(l.median_d - r.median_d);
+    const float step_m = static_cast<float>(std::abs(cam.depthFromDisparity(l.median_d) - cam.depthFromDisparity(r.median_d)));
+    if (step_px >= p.min_step_px && step_m >= p.min_step_m && step_px > best) best = step_px, cut_u = s[k]->u;
+  }
+  return cut_u;
+}
+
+}  // namespace nerv::stixel
