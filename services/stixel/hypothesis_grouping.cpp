@@ -100,6 +100,36 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
   clear_above.swap(out_clear);
 }
 
+// A post that is half of a short hedge group is not twice the group's
+// median (splitTowers); hedge_posts.hpp finds it by its neighbours instead.
+// It leaves the group as a tower, like splitTowers' posts.
+void splitHedgePosts(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool>& tower,
+                     std::vector<int>& clear_above, const StereoCamera& cam, const GroupingParams& p) {
+  if (p.hedge_posts.min_ratio <= 0) return;
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    if (tower[gi]) continue;
+    const auto [k, e] = findHedgePost(groups[gi], cam, p.hedge_posts);
+    if (k == e) continue;
+    const std::vector<const Stixel*> g = groups[gi];
+    int clear = kNoSurround;
+    if (k > 0) clear = std::min(clear, g[k - 1]->top_row);
+    if (e < g.size()) clear = std::min(clear, g[e]->top_row);
+    std::vector<std::vector<const Stixel*>> parts;
+    std::vector<bool> part_tower;
+    std::vector<int> part_clear;
+    if (k > 0) parts.emplace_back(g.begin(), g.begin() + k), part_tower.push_back(false), part_clear.push_back(kNoSurround);
+    parts.emplace_back(g.begin() + k, g.begin() + e), part_tower.push_back(true), part_clear.push_back(clear);
+    if (e < g.size()) parts.emplace_back(g.begin() + e, g.end()), part_tower.push_back(false), part_clear.push_back(kNoSurround);
+    groups.erase(groups.begin() + static_cast<long>(gi));
+    tower.erase(tower.begin() + static_cast<long>(gi));
+    clear_above.erase(clear_above.begin() + static_cast<long>(gi));
+    groups.insert(groups.begin() + static_cast<long>(gi), parts.begin(), parts.end());
+    tower.insert(tower.begin() + static_cast<long>(gi), part_tower.begin(), part_tower.end());
+    clear_above.insert(clear_above.begin() + static_cast<long>(gi), part_clear.begin(), part_clear.end());
+    gi += parts.size() - 1;  // the parts are not searched again
+  }
+}
+
 // A pedestrian beside a tree trunk or a facade, or a car parked against a
 // wall, is at the structure's depth and joins its group; the box then
 // covers the tree's crown and is rejected as too tall, and the road user
@@ -307,6 +337,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   std::vector<bool> tower(groups.size(), false);
   std::vector<int> clear_above(groups.size(), kNoSurround);
   splitTowers(groups, tower, clear_above, cam, p);
+  splitHedgePosts(groups, tower, clear_above, cam, p);
   splitStructures(groups, tower, clear_above, cam, p);
   splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);

@@ -114,6 +114,11 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.tower_height_ratio = params.tower_height_ratio;
   gp.tower_max_width_m = params.tower_max_width_m;
   gp.tower_edges_above_surround = params.tower_edges_above_surround;
+  gp.hedge_posts.min_ratio = params.hedge_post_min_ratio;
+  gp.hedge_posts.min_height_m = params.hedge_post_min_height_m;
+  gp.hedge_posts.min_step_m = params.hedge_post_min_step_m;
+  gp.hedge_posts.max_width_m = params.hedge_post_max_width_m;
+  gp.hedge_posts.max_distance_m = params.hedge_post_max_distance_m;
   gp.structure_min_height_m = params.structure_min_height_m;
   gp.split_chains = params.split_chains;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;

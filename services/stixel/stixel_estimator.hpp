@@ -33,6 +33,11 @@ struct Params {
   float tower_max_width_m = 0.8f;        // ... no wider than this become hypotheses of their own
   float structure_min_height_m = 4.5f;   // stixels this tall (trees, facades: no road user is) never share a box with lower ones; 0 = off
   bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
+  float hedge_post_min_ratio = 1.3f;     // a run of strips at most hedge_post_max_width_m wide whose stixels are this many times as tall as the strips beside it (0 = off) ...
+  float hedge_post_min_height_m = 0.8f;  // ... each at least this tall ...
+  float hedge_post_min_step_m = 0.2f;    // ... with its top this much above theirs leaves its group as a post (hedge_posts.hpp)
+  float hedge_post_max_width_m = 0.45f;  // ... (the run's width) ...
+  float hedge_post_max_distance_m = 30.0f; // ... at most this far
   bool tower_edges_above_surround = true;// such a post's box edges are cut on its rows above the hedge only
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
   bool occluded_nearest = true;          // ... the nearest surface above the occluder that fills min_obstacle_height_m, not the fullest
