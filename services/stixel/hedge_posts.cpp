@@ -35,14 +35,22 @@ std::pair<size_t, size_t> findHedgePost(const std::vector<const Stixel*>& g, con
       ++e;
     }
     const float width_m = (g[e - 1]->u + g[e - 1]->width - g[k]->u) * g[k]->depth_m / static_cast<float>(cam.fx);
-    // Hedge on both sides: a run at a group's end is as often a car's rear
-    // beside its lower receding side (synthetic wet_road 7: 5 false positives).
+    // Hedge on both sides, or at one end with the rest of the group on the
+    // run's far side from cx. Any tall run at a group's end is as often a
+    // car's rear beside its lower receding side (synthetic wet_road 7, wet_road
+    // 5, urban 11: 8 false positives at 23-29 m); but the side of a car in view
+    // is the one facing the optical axis, so that lower side always lies
+    // between the rear and cx. KITTI 0926's median-hedge posts at a group's
+    // end have the hedge on the outer side.
     const bool inside = k > 0 && e < n;
-    if (inside && width_m <= p.max_width_m && g[k]->depth_m <= p.max_distance_m) {
+    const bool rest_outward = p.at_group_end && (k == 0) != (e == n) &&
+                              (k == 0 ? g[0]->u >= cam.cx : g[n - 1]->u + g[n - 1]->width <= cam.cx);
+    if ((inside || rest_outward) && width_m <= p.max_width_m && g[k]->depth_m <= p.max_distance_m) {
       bool ok = true;
       for (size_t j = 0; j < n && ok; ++j)
         if ((j < k || j >= e) && visibleHeight(*g[j], cam) * p.min_ratio > low) ok = false;
       for (size_t j : {k - 1, e}) {
+        if (j >= n) continue;  // k - 1 wrapped (run at the left end) or e == n: no neighbour there
         const Stixel& nb = *g[j];
         const float step_m = static_cast<float>((nb.top_row - top) * nb.depth_m / cam.fy);
         if (visibleHeight(nb, cam) * p.min_ratio > low || step_m < p.min_step_m) ok = false;

@@ -119,6 +119,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.hedge_posts.min_step_m = params.hedge_post_min_step_m;
   gp.hedge_posts.max_width_m = params.hedge_post_max_width_m;
   gp.hedge_posts.max_distance_m = params.hedge_post_max_distance_m;
+  gp.hedge_posts.at_group_end = params.hedge_post_at_group_end;
   gp.structure_min_height_m = params.structure_min_height_m;
   gp.split_chains = params.split_chains;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;

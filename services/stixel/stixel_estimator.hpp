@@ -38,6 +38,7 @@ struct Params {
   float hedge_post_min_step_m = 0.2f;    // ... with its top this much above theirs leaves its group as a post (hedge_posts.hpp)
   float hedge_post_max_width_m = 0.45f;  // ... (the run's width) ...
   float hedge_post_max_distance_m = 30.0f; // ... at most this far
+  bool hedge_post_at_group_end = true;   // ... also at a group's end, when the rest of the group lies on its far side from the image centre column
   bool tower_edges_above_surround = true;// such a post's box edges are cut on its rows above the hedge only
   bool occluded_stixels = true;          // second-layer stixels: objects seen above a nearer one (occluded_stixels.hpp)
   bool occluded_nearest = true;          // ... the nearest surface above the occluder that fills min_obstacle_height_m, not the fullest

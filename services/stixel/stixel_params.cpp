@@ -35,6 +35,7 @@ Params readParams(ConfigSection& c) {
   c.get("hedge_post_min_step_m", p.hedge_post_min_step_m, 0.0, 20.0);
   c.get("hedge_post_max_width_m", p.hedge_post_max_width_m, 0.01, 10.0);
   c.get("hedge_post_max_distance_m", p.hedge_post_max_distance_m, 0.0, 500.0);
+  c.get("hedge_post_at_group_end", p.hedge_post_at_group_end);
   c.get("max_clearance_m", p.max_clearance_m, 0.0, 10.0);
   c.get("structure_min_height_m", p.structure_min_height_m, 0.0, 100.0);
   c.get("split_chains", p.split_chains);

@@ -1,7 +1,9 @@
 // Posts in a short hedge (hedge_posts.hpp): a post two strips wide inside a
 // hedge group of four strips leaves the group with its own box; a tall run at
 // a group's end (a car's rear beside its lower side) and a run beside a
-// neighbour nearly as tall stay in their group; the config keys.
+// neighbour nearly as tall stay in their group; a post at a group's end with
+// the hedge on its side away from the image centre leaves it, a car's rear or
+// a pedestrian whose lower side lies toward the centre does not; the config keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -32,10 +34,18 @@ std::vector<Stixel> strips(const StereoCamera& cam, int u0, float z, const std::
   return st;
 }
 
-GroupingParams withRule(float ratio) {
+GroupingParams withRule(float ratio, bool at_group_end = false) {
   GroupingParams p;
   p.hedge_posts.min_ratio = ratio;
+  p.hedge_posts.at_group_end = at_group_end;
   return p;
+}
+
+// The hypothesis whose box starts at column x, or nullptr.
+const Hypothesis* boxAt(const std::vector<Hypothesis>& hyps, int x) {
+  for (const Hypothesis& h : hyps)
+    if (h.box.x == x) return &h;
+  return nullptr;
 }
 
 TEST(stixelHedgePosts, APostHalfOfAShortHedgeGetsItsOwnBox) {
@@ -56,8 +66,9 @@ TEST(stixelHedgePosts, APostHalfOfAShortHedgeGetsItsOwnBox) {
 
 TEST(stixelHedgePosts, TallRunsAtAnEndOrBesideATallNeighbourStayInTheirGroup) {
   const StereoCamera cam = kittiLikeCamera();
-  const GroupingParams p = withRule(1.3f);
-  // A car's rear (1.4 m) at the end of its lower receding side.
+  const GroupingParams p = withRule(1.3f, true);
+  // A car's rear (1.4 m) at the end of its lower receding side (the group
+  // starts left of the image centre column, 609.6: not a hedge's outer end).
   const std::vector<Stixel> end = strips(cam, 600, 20.0f, {1.4f, 1.4f, 0.6f, 0.6f, 0.6f});
   EXPECT_EQ(groupStixels(end, cam, p).size(), 1u);
   // A pedestrian's head strips beside shoulders nearly as tall.
@@ -71,6 +82,49 @@ TEST(stixelHedgePosts, TallRunsAtAnEndOrBesideATallNeighbourStayInTheirGroup) {
   EXPECT_EQ(k, e);
 }
 
+TEST(stixelHedgePosts, APostAtAHedgeGroupsOuterEndGetsItsOwnBox) {
+  // KITTI 0926 frame 5: a striped post at 18.7 m, 0.85-0.9 m visible, at the
+  // left end of a hedge group right of the image centre (hedge 0.42-0.53 m).
+  const StereoCamera cam = kittiLikeCamera();
+  const std::vector<Stixel> right = strips(cam, 720, 18.7f, {0.9f, 0.9f, 0.45f, 0.5f, 0.45f, 0.5f});
+  EXPECT_EQ(boxAt(groupStixels(right, cam, withRule(1.3f, false)), 720)->box.w, 30)
+      << "without at_group_end the post is the hedge's box";
+  const std::vector<Hypothesis> on = groupStixels(right, cam, withRule(1.3f, true));
+  const Hypothesis* post = boxAt(on, 720);
+  ASSERT_NE(post, nullptr);
+  EXPECT_EQ(post->box.w, 10);
+  EXPECT_NEAR(post->height_m, 0.9f, 0.05f);
+  ASSERT_NE(boxAt(on, 730), nullptr) << "the hedge keeps its own box";
+
+  // The mirror image left of the centre: the post at the group's right end.
+  const std::vector<Stixel> left = strips(cam, 450, 18.7f, {0.5f, 0.45f, 0.5f, 0.45f, 0.9f, 0.9f});
+  const Hypothesis* mirror = boxAt(groupStixels(left, cam, withRule(1.3f, true)), 470);
+  ASSERT_NE(mirror, nullptr);
+  EXPECT_EQ(mirror->box.w, 10);
+}
+
+TEST(stixelHedgePosts, ARearOrAPersonAtAnEndWithItsLowerSideTowardTheCentreStaysWhole) {
+  // Synthetic wet_road 5/7, urban 11 at 23-29 m: one tall strip (a car's or
+  // van's rear edge) at a group's end, beside a lower side of the same object
+  // lying toward the image centre (the receding side in view faces the optical axis).
+  const StereoCamera cam = kittiLikeCamera();
+  const GroupingParams p = withRule(1.3f, true);
+  // Right of the centre, the car's rear (1.35 m) at the right end.
+  const std::vector<Stixel> rear_right = strips(cam, 690, 25.0f, {0.6f, 0.6f, 0.6f, 1.35f});
+  EXPECT_EQ(groupStixels(rear_right, cam, p).size(), 1u);
+  // Left of the centre, the rear at the left end.
+  const std::vector<Stixel> rear_left = strips(cam, 480, 25.0f, {1.35f, 0.6f, 0.6f, 0.6f});
+  EXPECT_EQ(groupStixels(rear_left, cam, p).size(), 1u);
+  // A pedestrian (1.8 m) at 24 m, left of the centre, beside a 0.45 m strip
+  // of its own group toward the centre (the geometry of wet_road 7 frame 16's
+  // van edge).
+  const std::vector<Stixel> person = strips(cam, 530, 24.3f, {1.8f, 0.45f});
+  std::vector<const Stixel*> g;
+  for (const Stixel& s : person) g.push_back(&s);
+  const auto [k, e] = findHedgePost(g, cam, p.hedge_posts);
+  EXPECT_EQ(k, e);
+}
+
 TEST(stixelHedgePosts, KeysAreReadAndRangeChecked) {
   YAML::Node n;
   n["hedge_post_min_ratio"] = 1.5;
@@ -78,6 +132,7 @@ TEST(stixelHedgePosts, KeysAreReadAndRangeChecked) {
   n["hedge_post_min_step_m"] = 0.3;
   n["hedge_post_max_width_m"] = 0.5;
   n["hedge_post_max_distance_m"] = 25.0;
+  n["hedge_post_at_group_end"] = false;
   ConfigSection c(n, "stixel");
   const Params p = readParams(c);
   EXPECT_NO_THROW(c.finish());
@@ -86,10 +141,13 @@ TEST(stixelHedgePosts, KeysAreReadAndRangeChecked) {
   EXPECT_FLOAT_EQ(p.hedge_post_min_step_m, 0.3f);
   EXPECT_FLOAT_EQ(p.hedge_post_max_width_m, 0.5f);
   EXPECT_FLOAT_EQ(p.hedge_post_max_distance_m, 25.0f);
+  EXPECT_FALSE(p.hedge_post_at_group_end);
   for (const char* key : {"hedge_post_min_ratio", "hedge_post_min_height_m", "hedge_post_min_step_m",
                           "hedge_post_max_width_m", "hedge_post_max_distance_m"})
     expectRejected(key, -1.0);
+  expectRejected("hedge_post_at_group_end", -1.0);  // not true or false
   EXPECT_EQ(Params{}.hedge_post_min_ratio, 1.3f) << "on by default";
+  EXPECT_TRUE(Params{}.hedge_post_at_group_end) << "on by default";
 }
 
 }  // namespace
