@@ -6,13 +6,10 @@ namespace nerv::snv {
 
 void LocalFields::prepare(const cv::Mat& disparity, const StereoCamera& cam, const IntegralNormalParams& params,
                           cv::Range ground_rows, const std::vector<cv::Rect>& rois) {
-  if (ground_rows.empty()) {
-    ground_.prepare(disparity, cam, params, 0, 0);
-  } else {
-    const cv::Range band = rowBandFor({cv::Rect(0, ground_rows.start, disparity.cols, ground_rows.size())},
-                                      disparity.rows, params.max_radius_px);
-    ground_.prepare(disparity, cam, params, band.start, band.end);
-  }
+  // The ground rows, all columns, with the margin their windows reach (empty: no ground).
+  const cv::Rect ground_rect =
+      ground_rows.empty() ? cv::Rect() : cv::Rect(0, ground_rows.start, disparity.cols, ground_rows.size());
+  ground_.prepare(disparity, cam, params, regionFor(ground_rect, disparity.size(), params.max_radius_px));
   which_.assign(rois.size(), -1);
   used_ = 0;
   for (size_t i = 0; i < rois.size(); ++i) {

@@ -8,6 +8,10 @@ namespace {
 
 int firstGrid(int from, int interval) { return (from + interval - 1) / interval * interval; }
 
+// How far the windows of a pixel reach: 2 * max_radius_px from the centre, plus the
+// integral image's row/column before them.
+int windowMargin(int max_radius_px) { return 2 * max_radius_px + 1; }
+
 }  // namespace
 
 int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, int interval_px,
@@ -36,7 +40,7 @@ int localNormalsInRect(const IntegralNormalField& field, const cv::Rect& rect, i
 
 cv::Rect regionFor(const cv::Rect& rect, const cv::Size& image, int max_radius_px) {
   if (rect.width <= 0 || rect.height <= 0) return cv::Rect();
-  const int margin = 2 * max_radius_px + 1;
+  const int margin = windowMargin(max_radius_px);
   return cv::Rect(rect.x - margin, rect.y - margin, rect.width + 2 * margin, rect.height + 2 * margin) &
          cv::Rect(0, 0, image.width, image.height);
 }
@@ -49,7 +53,7 @@ cv::Range rowBandFor(const std::vector<cv::Rect>& rects, int image_rows, int max
     hi = std::max(hi, r.y + r.height);
   }
   if (lo >= hi) return cv::Range(0, 0);
-  const int margin = 2 * max_radius_px + 1;
+  const int margin = windowMargin(max_radius_px);
   return cv::Range(std::clamp(lo - margin, 0, image_rows), std::clamp(hi + margin, 0, image_rows));
 }
 
