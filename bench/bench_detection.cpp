@@ -268,6 +268,10 @@ std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets_in, const std::
   return out;
 }
 
+// Per-frame listing: true positive, false positive, or ignored (DontCare,
+// an invisible or too far label).
+const char* outcomeTag(Outcome o) { return o == Outcome::TP ? "tp  " : o == Outcome::FP ? "fp  " : "ign "; }
+
 // "error: height 0.12 m below 0.20 m" -> "error: height below"; numbers dropped.
 std::string reasonKind(const Verdict& v) {
   std::string r = v.reason;
@@ -278,7 +282,7 @@ std::string reasonKind(const Verdict& v) {
     if (std::isdigit(static_cast<unsigned char>(w[0])) || w[0] == '(' || w[0] == '<') continue;
     if (w.back() == ',' || w.back() == ':') w.pop_back();
     out += (out.empty() ? "" : " ") + w;
-    if (w == "normals" || w == "below" || w == "above") break;
+    if (w == "normals" || w == "below" || w == "above" || w == "hypothesis") break;
   }
   return v.label + (out.empty() ? "" : ": " + out);
 }
@@ -509,14 +513,13 @@ int main(int argc, char** argv) {
           std::printf("\n");
         }
         for (size_t k = 0; k < hyps.size(); ++k) {
-          if (out_all[k] == Outcome::Ignored) continue;
           const NormalStats& ns = sn.rois[k];
           std::printf("  %s hyp %d box %4.0f,%3.0f-%4.0f,%3.0f z %.1f h %.2f w %.2f | n %d dens %.2f g %.2f o %.2f e %.2f "
-                      "elev %.0f tilt %.0f | %s%s\n", out_all[k] == Outcome::TP ? "tp  " : "fp  ", int(k), hyps[k].x1,
+                      "elev %.0f tilt %.0f | %s%s\n", outcomeTag(out_all[k]), int(k), hyps[k].x1,
                       hyps[k].y1, hyps[k].x2, hyps[k].y2, st.hypotheses[k].z_m, st.hypotheses[k].height_m,
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
-                      vs[k].kept ? "" : " (removed)");
+                      vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
         }
       }
 

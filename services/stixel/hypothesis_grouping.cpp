@@ -407,6 +407,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
                 p.tower_edges_above_surround ? clear_above[gi] : kNoSurround, min_x[gi], max_x[gi]);
       widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
+      extendOverOccluders(*input.disparity, cam, *input.ground, g, p.occluded_sides, box, min_x[gi], max_x[gi]);
       box.x0 = std::max(box.x0, min_x[gi]);
       box.x1 = std::min(box.x1, max_x[gi]);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;

@@ -9,6 +9,7 @@
 #include "hedge_posts.hpp"
 #include "height_steps.hpp"
 #include "person_pairs.hpp"
+#include "occluded_sides.hpp"
 #include "overhang_cut.hpp"
 #include "post_sides.hpp"
 #include "perception_types.hpp"
@@ -40,6 +41,7 @@ struct GroupingParams {
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;
   PostSidesParams post_sides;          // sides of posts widened across matcher holes (post_sides.hpp)
+  OccludedSideParams occluded_sides;  // box sides continued over a nearer occluder (occluded_sides.hpp)
   int column_width_px = 5;             // stixel strip width (refinement looks one strip outside)
 };
 

@@ -169,6 +169,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.post_sides.max_gap_m = params.post_sides_max_gap_m;
   gp.post_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.post_sides.ground_tolerance_m = params.ground_tolerance_m;
+  gp.occluded_sides.max_extension_m = params.occluded_side_max_extension_m;
+  gp.occluded_sides.min_width_m = params.occluded_side_min_width_m;
+  gp.occluded_sides.max_height_m = params.occluded_side_max_height_m;
+  gp.occluded_sides.min_depth_step_m = params.occluded_side_min_step_m;
+  gp.occluded_sides.min_pixels = params.occluded_side_min_pixels;
+  gp.occluded_sides.min_fill = params.occluded_side_min_fill;
+  gp.occluded_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
+  gp.occluded_sides.ground_tolerance_m = params.ground_tolerance_m;
   result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground, &posts});
   return result;
 }

@@ -87,6 +87,12 @@ Params readParams(ConfigSection& c) {
   c.get("post_sides_min_run_m", p.post_sides_min_run_m, 0.01, 10.0);
   c.get("post_sides_max_extension_m", p.post_sides_max_extension_m, 0.0, 10.0);
   c.get("post_sides_max_gap_m", p.post_sides_max_gap_m, 0.0, 10.0);
+  c.get("occluded_side_max_extension_m", p.occluded_side_max_extension_m, 0.0, 10.0);
+  c.get("occluded_side_min_width_m", p.occluded_side_min_width_m, 0.0, 10.0);
+  c.get("occluded_side_max_height_m", p.occluded_side_max_height_m, 0.0, 100.0);
+  c.get("occluded_side_min_step_m", p.occluded_side_min_step_m, 0.0, 100.0);
+  c.get("occluded_side_min_pixels", p.occluded_side_min_pixels, 1, 1000);
+  c.get("occluded_side_min_fill", p.occluded_side_min_fill, 0.0, 1.0);
   if (p.min_camera_height_m >= p.max_camera_height_m)
     throw ConfigError("config key '" + c.path() + ".min_camera_height_m' must be below max_camera_height_m");
   if (p.ground_tolerance_m >= p.min_camera_height_m)
