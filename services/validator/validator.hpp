@@ -17,7 +17,7 @@ struct Params {
   int min_normals = 5;                // fewer normals: not enough evidence
   float min_error_density = 0.5f;     // "error" needs at least this normals/samples density (dense blobs)
   bool keep_unvalidated = true;       // keep hypotheses without enough normals (a planner never loses one silently)
-  float min_unvalidated_height_m = 0.6f;  // ... except when normals were measured but too few or mixed and the box
+  float min_unvalidated_height_m = 0.8f;  // ... except when normals were measured but too few or mixed and the box
                                           // is lower than this (kerb, bush, lawn clutter); 0 = keep all
   float min_height_m = 0.2f;          // metric height below this (when known, > 0) is implausible -> error
   float max_height_m = 4.5f;          // metric height above this is implausible -> error ...

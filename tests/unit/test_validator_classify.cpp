@@ -124,7 +124,7 @@ TEST(validatorClassify, TooFewOrInvalidNormalsAreUnvalidated) {
   // Measured but empty, and low (a kerb): removed like a box with too few normals.
   const Verdict low = classify(hyp(6, 0.4f), &none, Params{});
   EXPECT_FALSE(low.kept);
-  EXPECT_EQ(low.reason, "unvalidated: no normals, lower than 0.60 m");
+  EXPECT_EQ(low.reason, "unvalidated: no normals, lower than 0.80 m");
   EXPECT_TRUE(classify(hyp(6, 0.4f), nullptr, Params{}).kept) << "no statistics at all (bad input) stays kept";
   NormalStats nan = stats(6, 100, 0.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f);
   const Verdict v = classify(hyp(6), &nan, Params{});
@@ -171,7 +171,7 @@ TEST(validatorClassify, LowUndecidedBoxesAreRemovedWithTheReason) {
   EXPECT_EQ(low.label, "unvalidated");
   EXPECT_FALSE(low.kept);
   EXPECT_NE(low.reason.find("mixed normals"), std::string::npos);
-  EXPECT_NE(low.reason.find("lower than 0.60 m"), std::string::npos) << low.reason;
+  EXPECT_NE(low.reason.find("lower than 0.80 m"), std::string::npos) << low.reason;
   EXPECT_TRUE(classify(hyp(11, 1.2f), &mixed, Params{}).kept);  // tall enough: kept unvalidated
   const NormalStats few = stats(11, 3, 0.0f, 1.0f, 0.0f);
   EXPECT_FALSE(classify(hyp(11, 0.4f), &few, Params{}).kept);
