@@ -63,36 +63,62 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     const float need = std::max(p.tower_min_height_m, p.tower_height_ratio * median);
     std::vector<bool> is_tower(g.size());
     for (size_t k = 0; k < g.size(); ++k) is_tower[k] = h[k] >= need;
+    // A lower stixel sharing its strip with a tower stixel (the lawn or kerb in
+    // front of a post, seen below it) does not break the post's run: it leaves
+    // the run's group and forms the companions' group of its own.
+    std::vector<bool> companion(g.size(), false);
+    if (p.tower_companions)
+      for (size_t k = 0; k < g.size(); ++k)
+        if (!is_tower[k])
+          for (size_t j = 0; j < g.size(); ++j)
+            if (j != k && is_tower[j] && g[j]->u == g[k]->u) companion[k] = true;
+    std::vector<size_t> idx;  // the stixels that form runs, in u order
+    for (size_t k = 0; k < g.size(); ++k)
+      if (!companion[k]) idx.push_back(k);
     // Runs of towers; too wide a run is the object itself, not a post in it.
     bool any = false;
-    for (size_t k = 0; k < g.size();) {
-      size_t e = k;
-      while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
-      if (is_tower[k]) {
-        const float width_m = (g[e - 1]->u + g[e - 1]->width - g[k]->u) * g[k]->depth_m / static_cast<float>(cam.fx);
-        if (width_m > p.tower_max_width_m || (k == 0 && e == g.size()))
-          for (size_t j = k; j < e; ++j) is_tower[j] = false;
+    for (size_t a = 0; a < idx.size();) {
+      size_t e = a;
+      while (e < idx.size() && is_tower[idx[e]] == is_tower[idx[a]]) ++e;
+      if (is_tower[idx[a]]) {
+        const Stixel& first = *g[idx[a]];
+        const Stixel& last = *g[idx[e - 1]];
+        const float width_m = (last.u + last.width - first.u) * first.depth_m / static_cast<float>(cam.fx);
+        if (width_m > p.tower_max_width_m || (a == 0 && e == idx.size()))
+          for (size_t j = a; j < e; ++j) is_tower[idx[j]] = false;
         else
           any = true;
       }
-      k = e;
+      a = e;
     }
     if (!any) {
       out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
-    for (size_t k = 0; k < g.size();) {
-      size_t e = k;
-      while (e < g.size() && is_tower[e] == is_tower[k]) ++e;
-      out.emplace_back(g.begin() + k, g.begin() + e);
-      out_tower.push_back(is_tower[k]);
+    std::vector<const Stixel*> companions;
+    for (size_t k = 0; k < g.size(); ++k)
+      if (companion[k]) {
+        bool beside_tower = false;
+        for (size_t j = 0; j < g.size(); ++j) beside_tower = beside_tower || (is_tower[j] && g[j]->u == g[k]->u);
+        if (beside_tower) companions.push_back(g[k]);
+        else idx.insert(std::upper_bound(idx.begin(), idx.end(), k), k);  // its tower was too wide: back in line
+      }
+    for (size_t a = 0; a < idx.size();) {
+      size_t e = a;
+      while (e < idx.size() && is_tower[idx[e]] == is_tower[idx[a]]) ++e;
+      out.emplace_back();
+      for (size_t j = a; j < e; ++j) out.back().push_back(g[idx[j]]);
+      out_tower.push_back(is_tower[idx[a]]);
       int clear = kNoSurround;
-      if (is_tower[k]) {
-        if (k > 0) clear = std::min(clear, g[k - 1]->top_row);
-        if (e < g.size()) clear = std::min(clear, g[e]->top_row);
+      if (is_tower[idx[a]]) {
+        if (a > 0) clear = std::min(clear, g[idx[a - 1]]->top_row);
+        if (e < idx.size()) clear = std::min(clear, g[idx[e]]->top_row);
       }
       out_clear.push_back(clear);
-      k = e;
+      a = e;
+    }
+    if (!companions.empty()) {
+      out.push_back(companions), out_tower.push_back(false), out_clear.push_back(kNoSurround);
     }
   }
   groups.swap(out);

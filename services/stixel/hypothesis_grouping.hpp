@@ -28,6 +28,7 @@ struct GroupingParams {
   float tower_min_height_m = 0.0f;     // a post in a hedge / on a kerb: stixels this tall ... (0 = off)
   float tower_height_ratio = 2.0f;     // ... and this many times the group's median height ...
   float tower_max_width_m = 0.8f;      // ... over at most this width leave the group as their own
+  bool tower_companions = true;        // lower stixels in a tower's strips do not break its run (they group apart)
   HedgePostParams hedge_posts;         // a post half of a short hedge group leaves it as a tower (hedge_posts.hpp)
   float structure_min_height_m = 0.0f; // stixels this tall (trees, facades) and lower ones never share a group; 0 = off
   bool split_chains = true;            // a group too deep for one vehicle is cut where a receding run meets a face at its far end

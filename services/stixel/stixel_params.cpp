@@ -39,6 +39,7 @@ Params readParams(ConfigSection& c) {
   c.get("max_clearance_m", p.max_clearance_m, 0.0, 10.0);
   c.get("structure_min_height_m", p.structure_min_height_m, 0.0, 100.0);
   c.get("split_chains", p.split_chains);
+  c.get("tower_companions", p.tower_companions);
   c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);
   c.get("max_disparity_px", p.max_disparity_px, 1.0, 4096.0);

@@ -288,6 +288,47 @@ TEST(stixelGrouping, APostInAHedgeLeavesTheHedgesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+TEST(stixelGrouping, APostSeenAboveTheLawnInFrontOfItIsOneTower) {
+  // A 0.4 m lawn edge at 12 m across 20 strips; a 3 m post at 13.4 m, four
+  // strips wide, stands behind it. Its outer strips see the post from its foot
+  // (first layer); its middle two see the lawn first and the post above it
+  // (occluded layer, listed after the lawn as the estimator does). The lawn
+  // stixels in the post's strips must not cut the post into three towers.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  p.tower_min_height_m = 0.8f;
+  auto stixel = [&](int u, float z, int bottom_row, float height_m) {
+    Stixel s = makeStixel(cam, u, z);
+    s.bottom_row = bottom_row;
+    s.top_row = bottom_row - static_cast<int>(height_m * cam.fy / z);
+    return s;
+  };
+  std::vector<Stixel> st;
+  for (int u = 600; u < 700; u += 5) {
+    const bool post = u >= 640 && u < 660, middle = u == 645 || u == 650;
+    if (!post || middle) st.push_back(stixel(u, 12.0f, 250, 0.4f));
+    if (post) {
+      const int bottom = middle ? st.back().top_row - 1 : 246;
+      st.push_back(stixel(u, 13.4f, bottom, 3.0f - (246 - bottom) * 13.4f / static_cast<float>(cam.fy)));
+    }
+  }
+  auto postBoxes = [&](const std::vector<Hypothesis>& hs) {
+    int n = 0;
+    for (const Hypothesis& h : hs) n += h.height_m > 2.0f ? 1 : 0;
+    return n;
+  };
+  const std::vector<Hypothesis> hs = groupStixels(st, cam, p);
+  ASSERT_EQ(postBoxes(hs), 1);
+  for (const Hypothesis& h : hs)
+    if (h.height_m > 2.0f) {
+      EXPECT_EQ(h.box.x, 640);
+      EXPECT_EQ(h.box.w, 20);
+      EXPECT_EQ(h.num_stixels, 4);
+    }
+  p.tower_companions = false;
+  EXPECT_GT(postBoxes(groupStixels(st, cam, p)), 1) << "without the rule the lawn cuts the post";
+}
+
 TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
   // A tree (trunk and crown, 8 m tall, 3 strips) and a 1.7 m pedestrian
   // (2 strips) right beside it, both at 15 m: one group by depth.
