@@ -1,3 +1,4 @@
+#include <cstdlib>
 // Offline detection quality: the reference table of the NERV method, computed
 // in-process on a dataset folder, for fast tuning.
 //
@@ -218,7 +219,7 @@ float intersection(const EvalBox& a, const EvalBox& b) {
   const float h = std::min(a.y2, b.y2) - std::max(a.y1, b.y1);
   return w > 0 && h > 0 ? w * h : 0.f;
 }
-EvalBox boxOf(const KittiLabel& l) { return {l.x1, l.y1, l.x2, l.y2, 0}; }
+EvalBox boxOf(const KittiLabel& l) { return labelBox(l); }
 EvalBox boxOf(const Hypothesis& h) {
   return {float(h.box.x), float(h.box.y), float(h.box.x + h.box.w), float(h.box.y + h.box.h), 0};
 }
@@ -520,6 +521,10 @@ int main(int argc, char** argv) {
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
                       vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
+          if (std::getenv("EDGE_DEBUG") && ml_all[k] >= 0) {
+            const auto& L = labels[ml_all[k]];
+            std::printf("  edge %s %.0f %.0f %.0f %.0f\n", L.type.c_str(), hyps[k].x1 - L.x1, hyps[k].y1 - L.y1, hyps[k].x2 - L.x2, hyps[k].y2 - L.y2);
+          }
         }
       }
 

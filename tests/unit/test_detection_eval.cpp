@@ -22,7 +22,7 @@ TEST(toolsDetectionEval, IouByHand) {
 
 TEST(toolsDetectionEval, TruePositivesMissesAndFalsePositives) {
   const std::vector<KittiLabel> labels = {label("Car", 0, 0, 10, 10), label("Car", 100, 0, 110, 10)};
-  // one hit (IoU 0.81), one box in empty space
+  // one hit (the label's pixels 0..10 are [0, 11) here: IoU 81/121), one box in empty space
   const EvalCounts c = evaluateFrame({{0, 0, 9, 9}, {50, 50, 60, 60}}, labels, EvalParams{});
   EXPECT_EQ(c.objects, 2);
   EXPECT_EQ(c.tp, 1);
@@ -33,9 +33,25 @@ TEST(toolsDetectionEval, TruePositivesMissesAndFalsePositives) {
 }
 
 TEST(toolsDetectionEval, MatchNeedsIouAboveHalf) {
-  // IoU 1/3 is no match, IoU 9/11 is
+  // Label pixels 0..10 = [0, 11) x [0, 11): IoU 60/171 is no match, 100/121 is.
   EXPECT_EQ(evaluateFrame({{5, 0, 15, 10}}, {label("Car", 0, 0, 10, 10)}, EvalParams{}).tp, 0);
-  EXPECT_EQ(evaluateFrame({{1, 0, 11, 10}}, {label("Car", 0, 0, 10, 10)}, EvalParams{}).tp, 1);  // 90/110
+  EXPECT_EQ(evaluateFrame({{1, 0, 11, 10}}, {label("Car", 0, 0, 10, 10)}, EvalParams{}).tp, 1);
+}
+
+TEST(toolsDetectionEval, LabelBoxesIncludeTheirLastColumnAndRow) {
+  // A pole whose pixels are columns 681..687 and rows 190..221 (KITTI: first
+  // and last pixel, both included) is 7 x 32 pixels; a detection covering
+  // exactly those pixels (x 681, w 7, y 190, h 32 -> [681, 688) x [190, 222)) has IoU 1.
+  const KittiLabel pole = label("Pole", 681, 190, 687, 221);
+  const EvalBox b = labelBox(pole);
+  EXPECT_FLOAT_EQ(b.x2 - b.x1, 7.f);
+  EXPECT_FLOAT_EQ(b.y2 - b.y1, 32.f);
+  EXPECT_FLOAT_EQ(iou({681, 190, 688, 222}, b), 1.f);
+  // One column too far left (680..686): 6 of 8 columns shared, IoU 0.75: a hit.
+  EXPECT_FLOAT_EQ(iou({680, 190, 687, 222}, b), 0.75f);
+  EXPECT_EQ(evaluateFrame({{680, 190, 687, 222}}, {pole}, EvalParams{}).tp, 1);
+  // Two columns of the 7 (IoU 2/7) are no hit.
+  EXPECT_EQ(evaluateFrame({{686, 190, 688, 222}}, {pole}, EvalParams{}).tp, 0);
 }
 
 TEST(toolsDetectionEval, SecondBoxOnTheSameObjectIsAFalsePositive) {

@@ -13,9 +13,11 @@ float intersection(const EvalBox& a, const EvalBox& b) {
   return w > 0 && h > 0 ? w * h : 0.f;
 }
 
-EvalBox boxOf(const KittiLabel& l) { return {l.x1, l.y1, l.x2, l.y2, 0}; }
+EvalBox boxOf(const KittiLabel& l) { return labelBox(l); }
 
 }  // namespace
+
+EvalBox labelBox(const KittiLabel& l) { return {l.x1, l.y1, l.x2 + 1, l.y2 + 1, 0}; }
 
 float iou(const EvalBox& a, const EvalBox& b) {
   const float inter = intersection(a, b);

@@ -42,6 +42,14 @@ struct EvalCounts {
 
 float iou(const EvalBox& a, const EvalBox& b);
 
+// A label's box in the detections' coordinates. KITTI label boxes (and the
+// synthetic ones, tight boxes of the pixels seeing the object) give the
+// first and last pixel columns and rows, both included; a detection box
+// x, y, w, h covers columns [x, x + w) and rows [y, y + h). The label's
+// right and bottom therefore move out by one pixel, so a detection covering
+// exactly the labelled pixels has IoU 1 (PASCAL VOC counts pixels alike).
+EvalBox labelBox(const KittiLabel& label);
+
 // One frame: detections (any order; matched by descending score) vs labels.
 EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
                          const std::vector<KittiLabel>& labels, const EvalParams& params);
