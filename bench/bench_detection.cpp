@@ -1,4 +1,3 @@
-#include <cstdlib>
 // Offline detection quality: the reference table of the NERV method, computed
 // in-process on a dataset folder, for fast tuning.
 //
@@ -521,10 +520,7 @@ int main(int argc, char** argv) {
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
                       vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
-          if (std::getenv("EDGE_DEBUG") && ml_all[k] >= 0) {
-            const auto& L = labels[ml_all[k]];
-            std::printf("  edge %s %.0f %.0f %.0f %.0f\n", L.type.c_str(), hyps[k].x1 - L.x1, hyps[k].y1 - L.y1, hyps[k].x2 - L.x2, hyps[k].y2 - L.y2);
-          }
+
         }
       }
 
