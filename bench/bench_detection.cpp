@@ -520,7 +520,6 @@ int main(int argc, char** argv) {
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
                       vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
-
         }
       }
 
