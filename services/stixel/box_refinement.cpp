@@ -37,6 +37,16 @@ ColumnFill columnFill(const cv::Mat& disp, const GroundModel& g, float road_tol_
 
 }  // namespace
 
+float occludedEdgeTolerance(const Stixel& s, int u, const StereoCamera& cam, float depth_tolerance_m,
+                            float band_px, float max_px) {
+  if (band_px <= 0) return max_px;
+  const double fb = cam.fx * cam.baseline_m;
+  const float metric = static_cast<float>(s.disparity * s.disparity * depth_tolerance_m / fb);
+  const double uc = s.u + 0.5 * s.width;
+  const double side_drop = uc > cam.cx && u < uc ? s.disparity * (uc - u) / (uc - cam.cx) : 0.0;
+  return std::min(max_px, std::max(band_px, metric) + static_cast<float>(side_drop));
+}
+
 void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                const std::vector<const Stixel*>& group, int column_width_px,
                const BoxRefinementParams& p, PixelBox& box, int edge_rows_above, int min_x, int max_x) {
@@ -48,15 +58,18 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   const bool narrow = p.narrow_max_width_m > 0 &&
                       (box.x1 - box.x0) * group.front()->depth_m / cam.fx <= p.narrow_max_width_m;
   const float min_fill = narrow ? std::max(p.min_column_fill, p.narrow_min_column_fill) : p.min_column_fill;
-  auto edgeOk = [&](const Stixel& s, int u) {
+  // occluded: the left edge's tolerance below the stixel's disparity.
+  auto edgeOk = [&](const Stixel& s, int u, bool occluded) {
     if (u < 0 || u >= cols) return false;
     const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
+    const float below =
+        occluded ? occludedEdgeTolerance(s, u, cam, p.depth_tolerance_m, p.occluded_edge_tolerance_px, tol) : tol;
     int last = s.bottom_row;
     if (edge_rows_above < s.bottom_row && 4 * (edge_rows_above - s.top_row) >= s.bottom_row - s.top_row + 1)
       last = edge_rows_above - 1;
     const int rows = last - s.top_row + 1;
     const ColumnFill f = columnFill(disparity, ground, p.ground_tolerance_m, u, s.top_row, last,
-                                    s.disparity - tol, s.disparity + tol);
+                                    s.disparity - below, s.disparity + tol);
     const float run_px = p.min_column_run_m > 0 ? p.min_column_run_m * static_cast<float>(cam.fy) / s.depth_m : 1e9f;
     return f.count >= min_fill * rows || f.longest_run >= run_px;
   };
@@ -67,22 +80,27 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   const Stixel& left = *group.front();
   const Stixel& right = *group.back();
   int x0 = box.x0, x1 = box.x1;
-  {
+  // Left edge: the first column of the edge strip that passes, then outwards
+  // from the strip's edge; with the occlusion band's tolerance first, and the
+  // usual one when that leaves the whole strip (a low foot stixel whose rows
+  // are mostly road), which would otherwise keep the union's edge.
+  auto scanLeft = [&](bool occluded) {
     int u = left.u;
     const int end = left.u + left.width;
-    while (u < end && !edgeOk(left, u)) ++u;
-    if (u < end) {
-      if (u == left.u)
-        while (u > left.u - reach(left) && edgeOk(left, u - 1)) --u;
-      x0 = u;
-    }
-  }
+    while (u < end && !edgeOk(left, u, occluded)) ++u;
+    if (u >= end) return false;
+    if (u == left.u)
+      while (u > left.u - reach(left) && edgeOk(left, u - 1, occluded)) --u;
+    x0 = u;
+    return true;
+  };
+  if (!scanLeft(p.occluded_edge_tolerance_px > 0)) scanLeft(false);
   {
     int u = right.u + right.width - 1;
-    while (u >= right.u && !edgeOk(right, u)) --u;
+    while (u >= right.u && !edgeOk(right, u, false)) --u;
     if (u >= right.u) {
       if (u == right.u + right.width - 1)
-        while (u < right.u + right.width - 1 + reach(right) && edgeOk(right, u + 1)) ++u;
+        while (u < right.u + right.width - 1 + reach(right) && edgeOk(right, u + 1, false)) ++u;
       x1 = u + 1;
     }
   }

@@ -11,6 +11,20 @@
 // the rows of the columns next to it, so narrow groups ask more of an edge
 // column than vehicles and pedestrians, whose edge columns (wheels, legs) are
 // sparse.
+//
+// The left edge has a second test. In a left-reference disparity map the
+// background just left of a foreground object is seen by the left camera only
+// (occluded in the right image); the matcher fills that band, dark and
+// untextured behind a far sign, with disparities a fraction of a pixel below
+// the object's, and the 1 px floor of the depth tolerance (+-4 m at 40 m) took
+// them in: a sign at 40 m had its box 4-7 px too wide on the left. A surface
+// that really continues leftwards at a lower disparity is a side receding from
+// the camera; a side parallel to the optical axis at lateral offset X has
+// d = B (u - cx) / X, so it is seen only right of the principal point, and
+// between the edge stixel's centre uc and a column u left of it its disparity
+// drops by d (uc - u) / (uc - cx). Below the stixel's disparity the left edge
+// therefore accepts the metric tolerance, at least occluded_edge_tolerance_px,
+// plus that drop, never more than the usual tolerance.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -33,7 +47,16 @@ struct BoxRefinementParams {
                                     // post; 0 = off) ...
   float max_extension_m = 0.0f;     // ... and may continue this far outside the group (at least a strip)
   float min_row_fill = 0.3f;        // the top row needs this share of the box width
+  float occluded_edge_tolerance_px = 0.0f; // left edge: the floor below the edge stixel's disparity [px]
+                                           // instead of 1 px, plus a receding side's drop (0 = off)
 };
+
+// Tolerance below the disparity of stixel s for column u on a box's left edge
+// (see above): the metric tolerance depth_tolerance_m at s, at least band_px,
+// plus the drop of a receding side between the stixel's centre and u, capped
+// at max_px (the tolerance of the other edges). band_px <= 0 returns max_px.
+float occludedEdgeTolerance(const Stixel& s, int u, const StereoCamera& cam, float depth_tolerance_m,
+                            float band_px, float max_px);
 
 struct PixelBox {
   int x0 = 0, x1 = 0;  // columns [x0, x1)

@@ -55,6 +55,20 @@ GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, co
 
 }  // namespace
 
+BoxRefinementParams boxRefinementParams(const Params& params) {
+  BoxRefinementParams r;
+  r.depth_tolerance_m = params.refine_depth_tolerance_m;
+  r.ground_tolerance_m = params.ground_tolerance_m;
+  r.min_column_fill = params.refine_min_column_fill;
+  r.narrow_max_width_m = params.refine_narrow_max_width_m;
+  r.narrow_min_column_fill = params.refine_narrow_min_column_fill;
+  r.min_row_fill = params.refine_min_row_fill;
+  r.occluded_edge_tolerance_px = params.refine_occluded_edge_tolerance_px;
+  r.min_column_run_m = params.refine_min_column_run_m;
+  r.max_extension_m = params.refine_max_extension_m;
+  return r;
+}
+
 StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
                              const Params& params, const GroundPrior& prior) {
   if (!disparity.empty() && disparity.type() != CV_32F)
@@ -155,14 +169,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.overhang.column_width_px = params.column_width_px;
   gp.refine_boxes = params.refine_boxes;
   gp.column_width_px = params.column_width_px;
-  gp.refinement.depth_tolerance_m = params.refine_depth_tolerance_m;
-  gp.refinement.ground_tolerance_m = params.ground_tolerance_m;
-  gp.refinement.min_column_fill = params.refine_min_column_fill;
-  gp.refinement.narrow_max_width_m = params.refine_narrow_max_width_m;
-  gp.refinement.narrow_min_column_fill = params.refine_narrow_min_column_fill;
-  gp.refinement.min_row_fill = params.refine_min_row_fill;
-  gp.refinement.min_column_run_m = params.refine_min_column_run_m;
-  gp.refinement.max_extension_m = params.refine_max_extension_m;
+  gp.refinement = boxRefinementParams(params);
   gp.post_sides.max_width_m = params.post_sides_max_width_m;
   gp.post_sides.min_height_m = params.post_sides_min_height_m;
   gp.post_sides.min_run_m = params.post_sides_min_run_m;

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "box_refinement.hpp"
 #include "config.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
@@ -92,6 +93,7 @@ struct Params {
   float refine_min_column_run_m = 0.4f;  // refinement: ... or a run this long [m] (sign plates); 0 = off
   float refine_max_extension_m = 0.5f;   // refinement: edges may move this far outside the group (>= a strip)
   float refine_min_row_fill = 0.3f;      // refinement: the top row needs this share of the box width
+  float refine_occluded_edge_tolerance_px = 0.5f; // refinement: left edge floor below the edge disparity [px] (occlusion band); 0 = off
   float post_sides_max_width_m = 0.5f;   // post sides across matcher holes (post_sides.hpp): groups at most this wide (0 = off) ...
   float post_sides_min_height_m = 1.5f;  // ... and at least this tall ...
   float post_sides_min_run_m = 0.4f;     // ... widen over columns holding this many metres at their depth, holes bridged ...
@@ -107,6 +109,9 @@ struct Params {
 
 // Reads the `stixel:` section of a pipeline config into Params (ConfigError on bad keys).
 Params readParams(ConfigSection& section);
+
+// The box refinement's parameters as estimateStixels passes them (box_refinement.hpp).
+BoxRefinementParams boxRefinementParams(const Params& params);
 
 // Camera pose from snv_extrinsic used when the v-disparity fit is weak.
 struct GroundPrior {

@@ -81,6 +81,7 @@ Params readParams(ConfigSection& c) {
   c.get("refine_narrow_max_width_m", p.refine_narrow_max_width_m, 0.0, 10.0);
   c.get("refine_narrow_min_column_fill", p.refine_narrow_min_column_fill, 0.0, 1.0);
   c.get("refine_min_row_fill", p.refine_min_row_fill, 0.0, 1.0);
+  c.get("refine_occluded_edge_tolerance_px", p.refine_occluded_edge_tolerance_px, 0.0, 1.0);
   c.get("refine_min_column_run_m", p.refine_min_column_run_m, 0.0, 10.0);
   c.get("refine_max_extension_m", p.refine_max_extension_m, 0.0, 10.0);
   c.get("post_sides_max_width_m", p.post_sides_max_width_m, 0.0, 10.0);
