@@ -6,14 +6,17 @@
 // cut, so the post fills less than the minimum obstacle height and the nearest
 // surface that does is the facade 10-25 m behind it (urban seed 12: the signs
 // to the right of the road at 15-38 m, covered in 0 of their frames).
-// For each first stixel, the pixels above its top that lie farther than it
-// and nearer than its second-layer stixel (if any), between min_plate_bottom_m
-// and max_plate_top_m over the road, vote into a disparity histogram; from the
+// For each first stixel whose top is at most max_occluder_height_m over the
+// road, the pixels above its top that lie farther than it and min_gap_m nearer
+// than its second-layer stixel (if any), between min_plate_bottom_m and
+// max_plate_top_m over the road, vote into a disparity histogram; from the
 // nearest bin, a bin whose window holds a plate's worth of pixels is tested
 // with the sign plate test (findPlateRows: rows filling the strip at that
-// disparity, nothing at it max_plate_width_m beside). The first plate found
-// becomes the strip's second-layer stixel: from the occluder's top up to the
-// plate's top, its base on the road line at the plate's disparity.
+// disparity, nothing at it or nearer max_plate_width_m beside, both sides in
+// the image), and the plate must be closed (it ends below the search). The
+// first plate found becomes the strip's second-layer stixel: from the
+// occluder's top up to the plate's top, its base on the road line at the
+// plate's disparity.
 #pragma once
 
 #include <opencv2/core.hpp>
