@@ -33,7 +33,26 @@ struct SignPlateParams {
   float min_row_fill = 0.4f;        // a plate row holds this share of the strip's columns at its depth
   float max_side_fill = 0.2f;       // ... and at most this share beside it
   float depth_tolerance_m = 1.0f;   // a pixel is at the stixel's depth within this (>= 1 px)
+  bool nearer_beside = false;       // a pixel beside the strip nearer than the plate counts as at its depth
 };
+
+// Rows [top, bottom] of the lowest plate in columns [u, u + width) at disparity d
+// (depth z_m), scanned upwards from row `lowest` to row `highest`: at least
+// min_plate_height_m of rows (one missing row bridged) in which min_row_fill of the
+// columns are at d and at most max_side_fill of those max_plate_width_m beside it
+// on either side. top = bottom = -1 when there is none; closed when the plate
+// ends below `highest` with at least min_plate_height_m of search rows above it
+// whose columns [u, u + width) hold less than min_row_fill at d on average: a run
+// into the search's top or the image's, or one whose strip goes on at its depth
+// above it (only the sides stopped it: a crown narrowing downwards), may be part
+// of a taller thing.
+struct PlateRows {
+  int top = -1, bottom = -1;
+  bool closed = false;
+  bool found() const { return top >= 0; }
+};
+PlateRows findPlateRows(const cv::Mat& disparity, const StereoCamera& cam, int u, int width, float d, int lowest,
+                        int highest, const SignPlateParams& p);
 
 // stixels: first-layer stixels; the tops of those under a plate are raised.
 // Returns copies of the raised stixels (to be kept as posts when alone).

@@ -10,6 +10,7 @@
 #include "ground_geometry.hpp"
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
+#include "occluded_plates.hpp"
 #include "occluded_stixels.hpp"
 #include "sign_plates.hpp"
 #include "stixel_extraction.hpp"
@@ -108,9 +109,17 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   sp.max_plate_width_m = params.sign_plate_max_width_m;
   sp.min_row_fill = params.sign_plate_min_row_fill;
   sp.depth_tolerance_m = params.refine_depth_tolerance_m;
-  const std::vector<Stixel> posts = raiseToSignPlates(disparity, cam, result.ground, result.stixels, sp);
+  std::vector<Stixel> posts = raiseToSignPlates(disparity, cam, result.ground, result.stixels, sp);
   if (params.occluded_stixels) {
-    const std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
+    std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
+    OccludedPlateParams op;
+    op.max_plate_top_m = params.occluded_plate_max_top_m;
+    op.max_distance_m = params.occluded_plate_max_distance_m;
+    op.max_occluder_height_m = params.occluded_plate_max_occluder_m;
+    op.min_gap_m = params.occluded_plate_min_gap_m;
+    op.plate = sp;
+    const std::vector<Stixel> plates = placeOccludedPlates(disparity, cam, result.ground, result.stixels, behind, ep, op);
+    posts.insert(posts.end(), plates.begin(), plates.end());
     result.stixels.insert(result.stixels.end(), behind.begin(), behind.end());
     std::stable_sort(result.stixels.begin(), result.stixels.end(),
                      [](const Stixel& a, const Stixel& b) { return a.u < b.u; });

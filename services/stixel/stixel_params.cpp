@@ -22,6 +22,10 @@ Params readParams(ConfigSection& c) {
   c.get("sign_plate_min_height_m", p.sign_plate_min_height_m, 0.01, 10.0);
   c.get("sign_plate_max_width_m", p.sign_plate_max_width_m, 0.0, 10.0);
   c.get("sign_plate_min_row_fill", p.sign_plate_min_row_fill, 0.01, 1.0);
+  c.get("occluded_plate_max_top_m", p.occluded_plate_max_top_m, 0.0, 20.0);
+  c.get("occluded_plate_max_distance_m", p.occluded_plate_max_distance_m, 0.0, 500.0);
+  c.get("occluded_plate_max_occluder_m", p.occluded_plate_max_occluder_m, 0.0, 20.0);
+  c.get("occluded_plate_min_gap_m", p.occluded_plate_min_gap_m, 0.0, 100.0);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
   c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);

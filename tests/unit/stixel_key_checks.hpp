@@ -7,6 +7,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stixel_estimator.hpp"
 
@@ -21,6 +23,22 @@ inline void expectRejected(const char* key, double value) {
     ADD_FAILURE() << key << " = " << value << " was accepted";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
+}
+
+// Each float key set to its value is read into its field, and each is rejected
+// below its range (-1).
+inline void expectFloatKeysRead(const std::vector<std::pair<const char*, float Params::*>>& keys,
+                                const std::vector<double>& values) {
+  ASSERT_EQ(keys.size(), values.size());
+  YAML::Node n;
+  for (size_t i = 0; i < keys.size(); ++i) n[keys[i].first] = values[i];
+  ConfigSection c(n, "stixel");
+  const Params p = readParams(c);
+  EXPECT_NO_THROW(c.finish());
+  for (size_t i = 0; i < keys.size(); ++i) {
+    EXPECT_FLOAT_EQ(p.*keys[i].second, static_cast<float>(values[i])) << keys[i].first;
+    expectRejected(keys[i].first, -1.0);
   }
 }
 
