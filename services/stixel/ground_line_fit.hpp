@@ -15,7 +15,10 @@ struct GroundLineFitParams {
   float min_camera_height_m = 0.5f;    // lines implying a lower camera are rejected
   float max_camera_height_m = 4.0f;    // lines implying a higher camera are rejected
   float max_pitch_deg = 10.0f;         // lines implying a steeper |pitch| are rejected
-  float inlier_tolerance_px = 1.5f;    // cells this close (disparity) to the line are inliers
+  float inlier_tolerance_px = 1.5f;    // cells this close (disparity) to the line are inliers ...
+  float obstacle_side_tolerance_px = 0.0f; // ... but cells above the line (nearer than the road: the feet
+                                       // of obstacles, kerbs, the road beside a car) only within this
+                                       // in the reweighted fit; 0 = inlier_tolerance_px on both sides
   int min_inlier_rows = 20;            // fewer image rows with inliers: weak fit
   float min_disparity_span_px = 5.0f;  // inliers must cover this disparity range (walls do not)
   float min_cell_fraction = 0.01f;     // cells with fewer pixels than this share of the width do not vote

@@ -27,6 +27,7 @@ GroundModel estimateGround(const cv::Mat& disparity, const StereoCamera& cam, co
   fp.max_camera_height_m = p.max_camera_height_m;
   fp.max_pitch_deg = p.max_pitch_deg;
   fp.inlier_tolerance_px = p.vd_inlier_tolerance_px;
+  fp.obstacle_side_tolerance_px = p.vd_obstacle_side_tolerance_px;
   fp.min_inlier_rows = p.min_ground_rows;
   fp.min_disparity_span_px = p.min_ground_disparity_span_px;
   const VDisparity vd = computeVDisparity(disparity, p.max_disparity_px, 2);

@@ -17,7 +17,7 @@ namespace nerv::stixel {
 struct Params {
   int column_width_px = 5;               // stixel width [px]
   float max_height_above_ground_m = 2.5f;// pixels higher than this above the road are "sky"
-  float ground_tolerance_m = 0.15f;      // pixels closer than this to the road plane are road
+  float ground_tolerance_m = 0.2f;       // pixels closer than this to the road plane are road
   float min_obstacle_height_m = 0.25f;   // shorter stixels are dropped
   float max_distance_m = 60.0f;          // hypotheses farther away are dropped
   float min_camera_height_m = 0.5f;      // ground lines implying another height are rejected
@@ -56,7 +56,8 @@ struct Params {
   int min_stixels_per_hypothesis = 2;    // smaller groups are dropped
   bool use_extrinsics_prior = true;      // fall back to the latest EXTRINSICS when the fit is weak
   float max_disparity_px = 256.0f;       // disparities at or above are treated as invalid
-  float vd_inlier_tolerance_px = 1.5f;   // v-disparity cells this close to the ground line are inliers
+  float vd_inlier_tolerance_px = 1.5f;   // v-disparity cells this close to the ground line are inliers ...
+  float vd_obstacle_side_tolerance_px = 1.0f; // ... above it (obstacle feet) only this close in the fit; 0 = symmetric
   int min_ground_rows = 20;              // fewer image rows supporting the ground line = weak fit
   float min_ground_disparity_span_px = 5.0f;  // ground inliers must span this disparity range
   float freespace_smoothness_m = 0.05f;  // free-space DP cost per disparity bin of boundary jump

@@ -48,6 +48,7 @@ Params readParams(ConfigSection& c) {
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);
   c.get("max_disparity_px", p.max_disparity_px, 1.0, 4096.0);
   c.get("vd_inlier_tolerance_px", p.vd_inlier_tolerance_px, 0.1, 20.0);
+  c.get("vd_obstacle_side_tolerance_px", p.vd_obstacle_side_tolerance_px, 0.0, 20.0);
   c.get("min_ground_rows", p.min_ground_rows, 2, 100000);
   c.get("min_ground_disparity_span_px", p.min_ground_disparity_span_px, 0.0, 1000.0);
   c.get("freespace_smoothness_m", p.freespace_smoothness_m, 0.0, 10.0);

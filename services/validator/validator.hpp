@@ -12,7 +12,7 @@ namespace nerv::validator {
 struct Params {
   float min_object_fraction = 0.3f;   // keep when at least this share of normals is upright
   float max_ground_fraction = 0.6f;   // reject as ground above this share of ground-like normals ...
-  int min_ground_normals = 8;         // ... out of at least this many normals
+  int min_ground_normals = 10;        // ... out of at least this many normals
   float max_error_fraction = 0.6f;    // reject as error above this share of error-like normals
   int min_normals = 5;                // fewer normals: not enough evidence
   float min_error_density = 0.5f;     // "error" needs at least this normals/samples density (dense blobs)

@@ -119,6 +119,33 @@ TEST(stixelGroundLineFit, RecoversLineWithThirtyPercentOutliers) {
   EXPECT_NEAR(p.pitch_deg, 1.2, 0.1);
 }
 
+TEST(stixelGroundLineFit, CellsJustAboveTheRoadDoNotTiltTheLine) {
+  // The feet of obstacles, kerbs and the road beside them put pixels a little
+  // nearer than the road in many rows (here a third of every lower row, 1.2 px
+  // above the road: inside the 1.5 px inlier band). Nothing lies below the road.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  scene.pitch_deg = 0.5f;
+  cv::Mat disp = renderDisparity(scene, cam);
+  for (int v = disp.rows / 2; v < disp.rows; ++v)
+    for (int u = 0; u < disp.cols; u += 3)
+      if (disp.at<float>(v, u) > 0) disp.at<float>(v, u) += 1.2f;
+  const VDisparity vd = computeVDisparity(disp, 256.0f);
+  auto fit = [&](float above_px) {
+    GroundLineFitParams p;
+    p.obstacle_side_tolerance_px = above_px;
+    const GroundLine line = fitGroundLine(vd, cam, p);
+    EXPECT_TRUE(line.ok) << line.reason;
+    return poseFromGroundLine(line.slope, line.intercept, cam);
+  };
+  const LinePose tight = fit(1.0f), symmetric = fit(0.0f);
+  EXPECT_NEAR(tight.pitch_deg, 0.5, 0.05);
+  EXPECT_NEAR(tight.height_m, 1.65, 0.01);
+  EXPECT_GT(std::abs(symmetric.pitch_deg - 0.5), 2 * std::abs(tight.pitch_deg - 0.5) + 0.03)
+      << "the symmetric band takes the near cells in (pitch " << symmetric.pitch_deg << " deg, height "
+      << symmetric.height_m << " m; tight " << tight.pitch_deg << " deg, " << tight.height_m << " m)";
+}
+
 TEST(stixelGroundLineFit, RecoversLineBehindLargeObstacles) {
   // Upright obstacles are vertical segments in v-disparity; they must not tilt the line.
   const StereoCamera cam = kittiLikeCamera();

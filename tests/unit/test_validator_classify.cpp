@@ -182,9 +182,9 @@ TEST(validatorClassify, LowUndecidedBoxesAreRemovedWithTheReason) {
 }
 
 TEST(validatorClassify, GroundNeedsEnoughNormals) {
-  const NormalStats thin = stats(12, 6, 1.0f, 0.0f, 0.0f);  // a far post: 6 normals, all ground-like
+  const NormalStats thin = stats(12, 9, 1.0f, 0.0f, 0.0f);  // a far post: 9 normals, all ground-like
   EXPECT_EQ(classify(hyp(12), &thin, Params{}).label, "unvalidated");
-  const NormalStats enough = stats(12, 8, 1.0f, 0.0f, 0.0f);
+  const NormalStats enough = stats(12, 10, 1.0f, 0.0f, 0.0f);
   EXPECT_EQ(classify(hyp(12), &enough, Params{}).label, "ground");
 }
 
