@@ -10,6 +10,7 @@
 #include "ground_geometry.hpp"
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
+#include "lone_posts.hpp"
 #include "occluded_plates.hpp"
 #include "occluded_stixels.hpp"
 #include "sign_plates.hpp"
@@ -111,6 +112,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   sp.min_row_fill = params.sign_plate_min_row_fill;
   sp.depth_tolerance_m = params.refine_depth_tolerance_m;
   std::vector<Stixel> posts = raiseToSignPlates(disparity, cam, result.ground, result.stixels, sp);
+  LonePostParams lp;
+  lp.min_height_m = params.lone_post_min_height_m;
+  lp.max_distance_m = params.lone_post_max_distance_m;
+  lp.min_gap_m = params.lone_post_min_gap_m;
+  lp.min_step_px = params.lone_post_min_step_px;
+  lp.side_strips = params.lone_post_side_strips;
+  const std::vector<Stixel> lone = findLonePosts(result.stixels, cam, lp);
+  posts.insert(posts.end(), lone.begin(), lone.end());
   if (params.occluded_stixels) {
     std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
     OccludedPlateParams op;

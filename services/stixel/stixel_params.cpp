@@ -26,6 +26,11 @@ Params readParams(ConfigSection& c) {
   c.get("occluded_plate_max_distance_m", p.occluded_plate_max_distance_m, 0.0, 500.0);
   c.get("occluded_plate_max_occluder_m", p.occluded_plate_max_occluder_m, 0.0, 20.0);
   c.get("occluded_plate_min_gap_m", p.occluded_plate_min_gap_m, 0.0, 100.0);
+  c.get("lone_post_min_height_m", p.lone_post_min_height_m, 0.0, 20.0);
+  c.get("lone_post_max_distance_m", p.lone_post_max_distance_m, 0.0, 500.0);
+  c.get("lone_post_min_gap_m", p.lone_post_min_gap_m, 0.0, 100.0);
+  c.get("lone_post_min_step_px", p.lone_post_min_step_px, 0.0, 256.0);
+  c.get("lone_post_side_strips", p.lone_post_side_strips, 1, 20);
   c.get("side_max_stixels", p.side_max_stixels, 0, 100);
   c.get("side_max_depth_m", p.side_max_depth_m, 0.0, 100.0);
   c.get("side_length_per_height", p.side_length_per_height, 0.0, 100.0);

@@ -13,17 +13,11 @@
 #include "occluded_plates.hpp"
 #include "stixel_estimator.hpp"
 #include "stixel_key_checks.hpp"
+#include "stixel_scene_queries.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
 namespace {
-
-// The hypothesis at depth z (within 1.5 m) whose box overlaps columns [u0, u1), if any.
-std::optional<Hypothesis> hypothesisAt(const std::vector<Hypothesis>& hs, float z, int u0, int u1) {
-  for (const Hypothesis& h : hs)
-    if (std::abs(h.z_m - z) < 1.5f && h.box.x < u1 && h.box.x + h.box.w > u0) return h;
-  return std::nullopt;
-}
 
 Params ruleOff() {
   Params p;
