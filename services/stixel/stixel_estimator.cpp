@@ -100,6 +100,9 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   ep.object_depth_tolerance_m = params.object_depth_tolerance_m;
   ep.max_stixel_height_m = params.max_stixel_height_m;
   ep.occluded_nearest = params.occluded_nearest;
+  ep.top_near_miss_px = params.top_near_miss_px;
+  ep.top_max_extension_m = params.top_max_extension_m;
+  ep.top_min_resume_m = params.top_min_resume_m;
 
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   const std::vector<int> boundary = solveFreeSpace(grid, fs);

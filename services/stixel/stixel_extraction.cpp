@@ -8,22 +8,55 @@
 namespace nerv::stixel {
 
 int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_tolerance_m,
-                  int u0, int u1, int foot_row, int limit_row, float d, float tolerance_px) {
+                  int u0, int u1, int foot_row, int limit_row, float d, const TopSearch& t) {
+  // Two scores in one pass: the plain one (a near miss is -1) and the bridged one
+  // (a near miss is 0), and per row its matches and valid pixels.
   int best_row = foot_row;
   int sum = 0, best = 0;
+  const bool bridge = t.near_miss_px > 0.0f && t.max_extension_rows > 0;
+  struct Row { int bridged, matches, valid; };
+  thread_local std::vector<Row> rows;
+  rows.clear();
+  int bsum = 0;
   const float h = g.height_m;
+  const float near_lo = d - t.tolerance_px - t.near_miss_px;
   for (int v = foot_row; v >= limit_row; --v) {
     const float* row = disparity.ptr<float>(v);
     // Road at this row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
     const float road_max = h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m);
+    int matches = 0, valid = 0;
     for (int u = u0; u < u1; ++u) {
       const float x = row[u];
       if (!(x > 0.0f) || !std::isfinite(x) || x <= road_max) continue;
-      sum += std::abs(x - d) <= tolerance_px ? 1 : -1;
+      ++valid;
+      if (std::abs(x - d) <= t.tolerance_px) {
+        ++sum, ++bsum, ++matches;
+      } else {
+        --sum;
+        if (!(x < d && x >= near_lo)) --bsum;
+      }
     }
     if (sum > best) best = sum, best_row = v;
+    if (bridge) rows.push_back({bsum, matches, valid});
   }
-  return best_row;
+  if (!bridge) return best_row;
+  // The bridged argmax at most max_extension_rows above the plain top ...
+  const int from = std::max(limit_row, best_row - t.max_extension_rows);
+  int bbest = rows[foot_row - best_row].bridged, top = best_row;
+  for (int v = best_row - 1; v >= from; --v) {
+    const int s = rows[foot_row - v].bridged;
+    if (s > bbest) bbest = s, top = v;
+  }
+  // ... is taken when the object resumes above the band: at least
+  // min_resume_rows rows between it and the plain top are mostly at its
+  // disparity (a head over a torso read toward the background; a surface
+  // behind at the near-miss disparity has only stray matches above it).
+  int resumed = 0;
+  for (int v = top; v < best_row; ++v) {
+    const Row& r = rows[foot_row - v];
+    if (2 * r.matches > r.valid) ++resumed;
+  }
+  return resumed >= std::max(1, t.min_resume_rows) ? top : best_row;
 }
 
 float medianObstacleDisparity(const cv::Mat& disparity, const GroundModel& g, const FreeSpaceParams& fs,
@@ -55,7 +88,12 @@ bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const 
   const int limit = std::clamp(static_cast<int>(std::ceil(limit_row)), 0, std::max(bottom, 0));
   const double z = fb / d;
   const float tol_px = std::max(1.0f, static_cast<float>(d * d * p.object_depth_tolerance_m / fb));
-  const int top = segmentTopRow(disparity, g, p.free_space.ground_tolerance_m, u0, u1, bottom, limit, d, tol_px);
+  TopSearch ts;
+  ts.tolerance_px = tol_px;
+  ts.near_miss_px = p.top_near_miss_px;
+  ts.max_extension_rows = static_cast<int>(std::floor(p.top_max_extension_m * cam.fy / z));
+  ts.min_resume_rows = static_cast<int>(std::ceil(p.top_min_resume_m * cam.fy / z));
+  const int top = segmentTopRow(disparity, g, p.free_space.ground_tolerance_m, u0, u1, bottom, limit, d, ts);
   if ((bottom - top + 1) * z / cam.fy < p.free_space.min_obstacle_height_m) return false;
   st = Stixel{};
   st.u = u0;

@@ -17,6 +17,18 @@ struct StixelExtractionParams {
   float object_depth_tolerance_m = 1.5f;  // pixels within this depth of the stixel belong to it
   float max_stixel_height_m = 10.0f;      // the top search stops this high over the road
   bool occluded_nearest = true;           // second layer: the nearest surface filling the minimum height, not the fullest
+  float top_near_miss_px = 1.5f;          // top search: pixels up to this much farther than the tolerance are no mismatch; 0 = off
+  float top_max_extension_m = 0.8f;       // ... which may raise the top by at most this much ...
+  float top_min_resume_m = 0.05f;         // ... when rows this tall above the band are mostly at the stixel's disparity
+};
+
+// Top search of one strip: pixels within tolerance_px of the stixel's disparity
+// match; see segmentTopRow for the near misses.
+struct TopSearch {
+  float tolerance_px = 1.0f;
+  float near_miss_px = 0.0f;
+  int max_extension_rows = 0;
+  int min_resume_rows = 1;
 };
 
 // Top row by height segmentation. Scanning up from the foot, each pixel of the
@@ -25,7 +37,13 @@ struct StixelExtractionParams {
 // (background or occluder); the top is the row maximising the summed score from the
 // foot up (a maximum-subarray cut: a few mismatched rows do not end the obstacle,
 // a background region does). The top may rise above the sky cut of the occupancy
-// (trucks, poles are taller than it).
+// (trucks, poles are taller than it). Near misses: the matcher pulls a body
+// narrower than its window (a far cyclist's torso) toward the background, so
+// pixels farther than the tolerance by at most near_miss_px score 0 in a second
+// sum; its argmax, at most max_extension_rows above the plain top, is the top
+// when at least min_resume_rows rows between the two are mostly (more than half
+// their valid pixels) at d: the head above a biased torso, not a surface just
+// behind the object with a few stray matches above it.
 // Median disparity of the obstacle pixels (between the road tolerance and the
 // sky cut) of columns [u0, u1), rows [v0, v1], disparity in [lo, hi); 0 if none.
 float medianObstacleDisparity(const cv::Mat& disparity, const GroundModel& ground, const FreeSpaceParams& fs,
@@ -38,7 +56,7 @@ bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const 
                        const StixelExtractionParams& p, int u0, int u1, float d, int max_bottom_row, Stixel& out);
 
 int segmentTopRow(const cv::Mat& disparity, const GroundModel& ground, float ground_tolerance_m,
-                  int u0, int u1, int foot_row, int limit_row, float d, float tolerance_px);
+                  int u0, int u1, int foot_row, int limit_row, float d, const TopSearch& search);
 
 // boundary: bin per strip from solveFreeSpace (-1 = none).
 std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,

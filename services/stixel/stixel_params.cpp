@@ -60,6 +60,9 @@ Params readParams(ConfigSection& c) {
   c.get("freespace_jump_cap_bins", p.freespace_jump_cap_bins, 1, 1000);
   c.get("object_depth_tolerance_m", p.object_depth_tolerance_m, 0.01, 100.0);
   c.get("max_stixel_height_m", p.max_stixel_height_m, 0.1, 100.0);
+  c.get("top_near_miss_px", p.top_near_miss_px, 0.0, 10.0);
+  c.get("top_max_extension_m", p.top_max_extension_m, 0.0, 5.0);
+  c.get("top_min_resume_m", p.top_min_resume_m, 0.0, 5.0);
   c.get("min_single_stixel_height_m", p.min_single_stixel_height_m, 0.0, 100.0);
   c.get("height_step_min_m", p.height_step_min_m, 0.0, 10.0);
   c.get("height_step_max_width_m", p.height_step_max_width_m, 0.0, 10.0);
