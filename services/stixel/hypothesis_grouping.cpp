@@ -234,15 +234,25 @@ void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(heightOf(*x, cam));
     std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
     if (zmax - zmin <= std::max(p.side_max_depth_m, p.side_length_per_height * h[h.size() / 2])) continue;
+    auto contiguousRun = [&](size_t a, size_t b) {  // strips s[a..b) without a gap
+      for (size_t k = a + 1; k < b; ++k)
+        if (s[k]->u - s[k - 1]->u > s[k - 1]->width) return false;
+      return true;
+    };
+    const size_t long_run = static_cast<size_t>(std::max(0, p.chain_long_run_stixels));
     int cut_u = -1;
     for (size_t c = kRun; c + kRun <= s.size() && cut_u < 0; ++c) {
-      bool contiguous = true;
-      for (size_t k = c - kRun + 1; k < c + kRun; ++k) contiguous = contiguous && s[k]->u - s[k - 1]->u <= s[k - 1]->width;
-      if (!contiguous) continue;
-      const int left = runDirection(s, c - kRun, c, cam), right = runDirection(s, c, c + kRun, cam);
-      // Along-road run receding towards the face it meets.
-      const bool rail_then_face = left == 1 && right == -1 && s[c - 1]->depth_m > s[c - kRun]->depth_m;
-      const bool face_then_rail = left == -1 && right == 1 && s[c]->depth_m > s[c + kRun - 1]->depth_m;
+      if (!contiguousRun(c - kRun, c + kRun)) continue;
+      const int face_left = runDirection(s, c - kRun, c, cam), right = runDirection(s, c, c + kRun, cam);
+      // Along-road run receding towards the face it meets. Beyond ~15 m a
+      // rail recedes ~0.5 m per strip, within the depth noise of four strips:
+      // when those do not decide, a longer run before the face does.
+      int left = face_left;
+      size_t lrun = kRun;
+      if (left != 1 && right == -1 && long_run > kRun && c >= long_run && contiguousRun(c - long_run, c))
+        left = runDirection(s, c - long_run, c, cam), lrun = long_run;
+      const bool rail_then_face = left == 1 && right == -1 && s[c - 1]->depth_m > s[c - lrun]->depth_m;
+      const bool face_then_rail = face_left == -1 && right == 1 && s[c]->depth_m > s[c + kRun - 1]->depth_m;
       if (rail_then_face || face_then_rail) cut_u = s[c]->u;
     }
     if (cut_u < 0) continue;

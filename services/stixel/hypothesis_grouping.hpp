@@ -31,7 +31,8 @@ struct GroupingParams {
   bool tower_companions = true;        // lower stixels in a tower's strips do not break its run (they group apart)
   HedgePostParams hedge_posts;         // a post half of a short hedge group leaves it as a tower (hedge_posts.hpp)
   float structure_min_height_m = 0.0f; // stixels this tall (trees, facades) and lower ones never share a group; 0 = off
-  bool split_chains = true;            // a group too deep for one vehicle is cut where a receding run meets a face at its far end
+  bool split_chains = true;            // a group too deep for one vehicle is cut where a receding run meets a face at its far end ...
+  int chain_long_run_stixels = 8;      // ... judged over this many strips before the face when four do not decide (0 = four only)
   bool tower_edges_above_surround = true;  // such a post's box edges are cut on its rows above the hedge only
   float min_obstacle_height_m = 0.25f; // lower groups are dropped
   float max_distance_m = 60.0f;        // farther groups are dropped

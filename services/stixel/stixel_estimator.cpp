@@ -158,6 +158,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.hedge_posts.at_group_end = params.hedge_post_at_group_end;
   gp.structure_min_height_m = params.structure_min_height_m;
   gp.split_chains = params.split_chains;
+  gp.chain_long_run_stixels = params.chain_long_run_stixels;
   gp.tower_companions = params.tower_companions;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;

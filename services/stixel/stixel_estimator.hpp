@@ -34,6 +34,7 @@ struct Params {
   float tower_max_width_m = 0.8f;        // ... no wider than this become hypotheses of their own
   float structure_min_height_m = 4.5f;   // stixels this tall (trees, facades: no road user is) never share a box with lower ones; 0 = off
   bool tower_companions = true;          // lower stixels sharing a tower's strips (the lawn before a post) do not cut its run
+  int chain_long_run_stixels = 8;        // a rail's run before a face judged over this many strips when four do not decide (0 = off)
   bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
   float hedge_post_min_ratio = 1.3f;     // a run of strips at most hedge_post_max_width_m wide whose stixels are this many times as tall as the strips beside it (0 = off) ...
   float hedge_post_min_height_m = 0.8f;  // ... each at least this tall ...

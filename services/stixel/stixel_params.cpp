@@ -48,6 +48,7 @@ Params readParams(ConfigSection& c) {
   c.get("max_clearance_m", p.max_clearance_m, 0.0, 10.0);
   c.get("structure_min_height_m", p.structure_min_height_m, 0.0, 100.0);
   c.get("split_chains", p.split_chains);
+  c.get("chain_long_run_stixels", p.chain_long_run_stixels, 0, 64);
   c.get("tower_companions", p.tower_companions);
   c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);

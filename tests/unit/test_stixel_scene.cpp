@@ -355,18 +355,26 @@ TEST(stixelGrouping, APedestrianBesideATreeLeavesTheTreesGroup) {
   EXPECT_EQ(groupStixels(st, cam, p).size(), 1u);
 }
 
+// A stixel at column u and depth z whose top stands height_m over its foot.
+Stixel stixelOfHeight(const StereoCamera& cam, int u, float z, float height_m) {
+  Stixel s = makeStixel(cam, u, z);
+  s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
+  return s;
+}
+
+// The left column of the 5 px strip that sees lateral offset x_m at depth z_m.
+int stripAt(const StereoCamera& cam, double x_m, double z_m) {
+  return static_cast<int>(cam.cx + cam.fx * x_m / z_m) / 5 * 5;
+}
+
 TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
   // A 0.8 m guard rail 5 m left of the camera, seen from 8 m to 17 m, ends at
   // a car's rear (1.5 m tall, X -4.7..-3.0 m) at 15.5 m: the rail's far end
   // and the car are within the grouping gap, so rail and car were one group.
   const StereoCamera cam = kittiLikeCamera();
   GroupingParams p;
-  auto at = [&](int u, float z, float height_m) {
-    Stixel s = makeStixel(cam, u, z);
-    s.top_row = s.bottom_row - static_cast<int>(std::lround(height_m * cam.fy / z));
-    return s;
-  };
-  auto column = [&](double x_m, double z_m) { return static_cast<int>(cam.cx + cam.fx * x_m / z_m) / 5 * 5; };
+  auto at = [&](int u, float z, float height_m) { return stixelOfHeight(cam, u, z, height_m); };
+  auto column = [&](double x_m, double z_m) { return stripAt(cam, x_m, z_m); };
   std::vector<Stixel> rail, car;
   for (int u = column(-5.0, 8.0); u < column(-5.0, 17.0); u += 5)
     rail.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
@@ -388,6 +396,30 @@ TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
   for (int u = column(-6.7, 8.0); u < rail.front().u; u += 5) away.push_back(at(u, 8.0f, 1.5f));
   away.insert(away.end(), rail.begin(), rail.end());
   EXPECT_EQ(groupStixels(away, cam, p).size(), 1u);
+}
+
+TEST(stixelGrouping, AFarRailWithDepthNoiseIsStillCutBeforeTheCar) {
+  // Highway seed 23 frame 14: a rail 5 m left recedes from 12 m; its last four
+  // strips before a car's rear at 18.3 m read 19.7, 19.8, 20.1, 19.5 m (the
+  // matcher flattens the far rail): over four strips it does not recede, over
+  // the eight before the car it does.
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p;
+  auto at = [&](int u, float z, float height_m) { return stixelOfHeight(cam, u, z, height_m); };
+  auto column = [&](double x_m, double z_m) { return stripAt(cam, x_m, z_m); };
+  std::vector<Stixel> st;
+  for (int u = column(-5.0, 12.0); u < column(-5.0, 19.0); u += 5)
+    st.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
+  for (const float z : {19.7f, 19.8f, 20.1f, 19.5f}) st.push_back(at(st.back().u + 5, z, 0.8f));
+  const int car_u = st.back().u + 5;
+  for (int u = car_u; u < car_u + 40; u += 5) st.push_back(at(u, 18.3f, 1.5f));
+  p.chain_long_run_stixels = 0;
+  ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "four strips alone do not see the far rail recede";
+  p.chain_long_run_stixels = 8;
+  const auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_EQ(hs[1].box.x, car_u);
+  EXPECT_EQ(hs[1].num_stixels, 8);
 }
 
 TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
