@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
 
 namespace {
 
-// Disparity tolerance of a depth tolerance at disparity d: dZ = Z^2/(fB) dd.
-float toleranceAt(float d, double fb, float tol_m) {
-  return std::max(1.0f, static_cast<float>(d * d * tol_m / fb));
-}
 
 // Pixels of column u, rows [y0, y1], within [lo, hi] and above the road:
 // their number and the longest run of consecutive ones.
@@ -51,7 +48,6 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
                const std::vector<const Stixel*>& group, int column_width_px,
                const BoxRefinementParams& p, PixelBox& box, int edge_rows_above, int min_x, int max_x) {
   if (group.empty() || disparity.empty()) return;
-  const double fb = cam.fx * cam.baseline_m;
   const int cols = disparity.cols, cw = std::max(1, column_width_px);
 
   // Left and right edges: scan the edge stixel's strip and the strip outside it.
@@ -61,7 +57,7 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   // occluded: the left edge's tolerance below the stixel's disparity.
   auto edgeOk = [&](const Stixel& s, int u, bool occluded) {
     if (u < 0 || u >= cols) return false;
-    const float tol = toleranceAt(s.disparity, fb, p.depth_tolerance_m);
+    const float tol = disparityTolerance(s.disparity, cam, p.depth_tolerance_m);
     const float below =
         occluded ? occludedEdgeTolerance(s, u, cam, p.depth_tolerance_m, p.occluded_edge_tolerance_px, tol) : tol;
     int last = s.bottom_row;
@@ -112,8 +108,8 @@ void refineBox(const cv::Mat& disparity, const StereoCamera& cam, const GroundMo
   // depths fill min_row_fill of the width, confirmed by the next row.
   float dmin = group.front()->disparity, dmax = dmin;
   for (const Stixel* s : group) dmin = std::min(dmin, s->disparity), dmax = std::max(dmax, s->disparity);
-  const float lo = dmin - toleranceAt(dmin, fb, p.depth_tolerance_m);
-  const float hi = dmax + toleranceAt(dmax, fb, p.depth_tolerance_m);
+  const float lo = dmin - disparityTolerance(dmin, cam, p.depth_tolerance_m);
+  const float hi = dmax + disparityTolerance(dmax, cam, p.depth_tolerance_m);
   const float need = p.min_row_fill * (x1 - x0);
   auto rowOk = [&](int v) {
     const float* row = disparity.ptr<float>(v);

@@ -66,12 +66,15 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     // A lower stixel sharing its strip with a tower stixel (the lawn or kerb in
     // front of a post, seen below it) does not break the post's run: it leaves
     // the run's group and forms the companions' group of its own.
+    auto besideTower = [&](size_t k) {  // a lower stixel in a strip that holds a tower stixel
+      if (is_tower[k]) return false;
+      for (size_t j = 0; j < g.size(); ++j)
+        if (is_tower[j] && g[j]->u == g[k]->u) return true;
+      return false;
+    };
     std::vector<bool> companion(g.size(), false);
     if (p.tower_companions)
-      for (size_t k = 0; k < g.size(); ++k)
-        if (!is_tower[k])
-          for (size_t j = 0; j < g.size(); ++j)
-            if (j != k && is_tower[j] && g[j]->u == g[k]->u) companion[k] = true;
+      for (size_t k = 0; k < g.size(); ++k) companion[k] = besideTower(k);
     std::vector<size_t> idx;  // the stixels that form runs, in u order
     for (size_t k = 0; k < g.size(); ++k)
       if (!companion[k]) idx.push_back(k);
@@ -98,9 +101,7 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     std::vector<const Stixel*> companions;
     for (size_t k = 0; k < g.size(); ++k)
       if (companion[k]) {
-        bool beside_tower = false;
-        for (size_t j = 0; j < g.size(); ++j) beside_tower = beside_tower || (is_tower[j] && g[j]->u == g[k]->u);
-        if (beside_tower) companions.push_back(g[k]);
+        if (besideTower(k)) companions.push_back(g[k]);
         else idx.insert(std::upper_bound(idx.begin(), idx.end(), k), k);  // its tower was too wide: back in line
       }
     for (size_t a = 0; a < idx.size();) {

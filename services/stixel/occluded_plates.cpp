@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
@@ -17,7 +18,7 @@ std::vector<Stixel> placeOccludedPlates(const cv::Mat& disparity, const StereoCa
   const float a = g.vd_slope, b = g.vd_intercept, h = g.height_m;
   // Row where a point of disparity d is height_m over the road.
   auto rowAt = [&](float d, float height_m) { return (d * (1.0f - height_m / h) - b) / a; };
-  auto tolerancePx = [&](float d) { return std::max(1.0f, static_cast<float>(d * d * ep.object_depth_tolerance_m / fb)); };
+  auto tolerancePx = [&](float d) { return disparityTolerance(d, cam, ep.object_depth_tolerance_m); };
   // The plate's height band as an "obstacle window" for medianObstacleDisparity.
   FreeSpaceParams band = ep.free_space;
   band.ground_tolerance_m = p.plate.min_plate_bottom_m;

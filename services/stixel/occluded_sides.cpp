@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
 namespace {
 
-// Disparity span of a depth span at disparity d: dd = d^2 dZ / (fB), at least 1 px.
-float spanAt(float d, double fb, float metres) { return std::max(1.0f, static_cast<float>(d * d * metres / fb)); }
 
 struct Column {
   const cv::Mat& disp;
@@ -61,7 +60,6 @@ bool extendOverOccluders(const cv::Mat& disparity, const StereoCamera& cam, cons
                          const std::vector<const Stixel*>& group, const OccludedSideParams& p, PixelBox& box,
                          int min_x, int max_x) {
   if (p.max_extension_m <= 0 || group.empty() || disparity.empty() || box.x1 <= box.x0) return false;
-  const double fb = cam.fx * cam.baseline_m;
   const float depth = group.front()->depth_m;
   if (!(depth > 0) || (box.x1 - box.x0) * depth / cam.fx < p.min_width_m ||
       (box.y1 - box.y0 + 1) * depth / cam.fy > p.max_height_m)
@@ -74,9 +72,9 @@ bool extendOverOccluders(const cv::Mat& disparity, const StereoCamera& cam, cons
   for (const int dir : {+1, -1}) {
     const Stixel& s = dir > 0 ? *group.back() : *group.front();
     if (!(s.depth_m > 0)) continue;
-    const float tol = spanAt(s.disparity, fb, p.depth_tolerance_m);
+    const float tol = disparityTolerance(s.disparity, cam, p.depth_tolerance_m);
     // Nearer than the object's own tolerance band by the step (a neighbour within the band is beside it, not in front).
-    const float nearer = s.disparity + tol + spanAt(s.disparity, fb, p.min_depth_step_m);
+    const float nearer = s.disparity + tol + disparityTolerance(s.disparity, cam, p.min_depth_step_m);
     const int band_top = std::max(0, box.y0 - static_cast<int>(p.search_above_m * cam.fy / s.depth_m));
     const int reach = static_cast<int>(p.max_extension_m * cam.fx / s.depth_m);
     const int max_gap = static_cast<int>(p.max_gap_m * cam.fx / s.depth_m);

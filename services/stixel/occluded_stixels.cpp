@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
@@ -22,7 +23,7 @@ std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const Stere
     const int bottom = s1.top_row - 1;  // the occluder's top hides everything below
     if (bottom < 1) continue;
     // Clearly behind the first stixel: farther by its depth tolerance.
-    const float tol1 = std::max(1.0f, static_cast<float>(s1.disparity * s1.disparity * p.object_depth_tolerance_m / fb));
+    const float tol1 = disparityTolerance(s1.disparity, cam, p.object_depth_tolerance_m);
     const float d_max = s1.disparity - tol1;
     if (d_max <= min_d) continue;
     hist.assign(static_cast<size_t>(std::ceil(d_max)) + 2, 0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
@@ -25,8 +26,8 @@ int cutOverhang(const cv::Mat& disparity, const StereoCamera& cam, const GroundM
   std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
   const float d = disp[disp.size() / 2];
   if (!(d > 0)) return -1;
-  const float lo = dmin - std::max(1.0f, static_cast<float>(dmin * dmin * p.depth_tolerance_m / fb));
-  const float hi = dmax + std::max(1.0f, static_cast<float>(dmax * dmax * p.depth_tolerance_m / fb));
+  const float lo = dmin - disparityTolerance(dmin, cam, p.depth_tolerance_m);
+  const float hi = dmax + disparityTolerance(dmax, cam, p.depth_tolerance_m);
   // Lowest row that may be cut: min_height_m over the road at the group's disparity.
   const float h = g.height_m;
   const float row_min = (d * (1.0f - p.min_height_m / h) - g.vd_intercept) / g.vd_slope;

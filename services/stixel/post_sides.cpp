@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
@@ -41,7 +42,7 @@ bool widenPostSides(const cv::Mat& disparity, const StereoCamera& cam, const Gro
   if ((box.x1 - box.x0) / px_per_m > p.max_width_m) return false;
   if ((box.y1 - box.y0 + 1) * z / cam.fy < p.min_height_m) return false;
 
-  const float tol = std::max(1.0f, static_cast<float>(disp * disp * p.depth_tolerance_m / fb));
+  const float tol = disparityTolerance(disp, cam, p.depth_tolerance_m);
   const int run_px = std::max(1, static_cast<int>(std::lround(p.min_run_m * cam.fy / z)));
   const int reach = static_cast<int>(p.max_extension_m * px_per_m);
   const int max_gap = static_cast<int>(p.max_gap_m * px_per_m);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
+
 namespace nerv::stixel {
 
 namespace {
@@ -24,7 +26,7 @@ PlateRows findPlateRows(const cv::Mat& disparity, const StereoCamera& cam, int u
                         int highest, const SignPlateParams& p) {
   const double fb = cam.fx * cam.baseline_m;
   const double z = fb / d;
-  const float tol = std::max(1.0f, static_cast<float>(d * d * p.depth_tolerance_m / fb));
+  const float tol = disparityTolerance(d, cam, p.depth_tolerance_m);
   const int side = static_cast<int>(std::lround(p.max_plate_width_m * cam.fx / z));
   const int need_rows = std::max(2, static_cast<int>(std::lround(p.min_plate_height_m * cam.fy / z)));
   lowest = std::min(lowest, disparity.rows - 1), highest = std::max(highest, 0);

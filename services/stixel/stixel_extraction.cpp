@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 
 namespace nerv::stixel {
@@ -87,7 +88,7 @@ bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const 
   const float limit_row = (d * (1.0f - p.max_stixel_height_m / h) - b) / a;
   const int limit = std::clamp(static_cast<int>(std::ceil(limit_row)), 0, std::max(bottom, 0));
   const double z = fb / d;
-  const float tol_px = std::max(1.0f, static_cast<float>(d * d * p.object_depth_tolerance_m / fb));
+  const float tol_px = disparityTolerance(d, cam, p.object_depth_tolerance_m);
   TopSearch ts;
   ts.tolerance_px = tol_px;
   ts.near_miss_px = p.top_near_miss_px;
