@@ -212,16 +212,7 @@ std::map<long, TruePose> readExtrinsics(const std::string& path) {
   return poses;
 }
 
-float area(const EvalBox& b) { return std::max(0.f, b.x2 - b.x1) * std::max(0.f, b.y2 - b.y1); }
-float intersection(const EvalBox& a, const EvalBox& b) {
-  const float w = std::min(a.x2, b.x2) - std::max(a.x1, b.x1);
-  const float h = std::min(a.y2, b.y2) - std::max(a.y1, b.y1);
-  return w > 0 && h > 0 ? w * h : 0.f;
-}
-EvalBox boxOf(const KittiLabel& l) { return labelBox(l); }
-EvalBox boxOf(const Hypothesis& h) {
-  return {float(h.box.x), float(h.box.y), float(h.box.x + h.box.w), float(h.box.y + h.box.h), 0};
-}
+EvalBox boxOf(const Hypothesis& h) { return detectionBox(h.box.x, h.box.y, h.box.w, h.box.h); }
 
 enum class Outcome { TP, FP, Ignored };
 
@@ -250,7 +241,7 @@ std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets_in, const std::
     int best = -1;
     float best_iou = p.min_iou;
     for (size_t i = 0; i < counted.size(); ++i) {
-      const float o = iou(d, boxOf(labels[counted[i]]));
+      const float o = iou(d, labelBox(labels[counted[i]]));
       if (!used[i] && o > best_iou) best_iou = o, best = int(i);
     }
     if (best >= 0) {
@@ -260,9 +251,9 @@ std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets_in, const std::
       continue;
     }
     bool neutral = false;
-    for (int g : ignored) neutral = neutral || iou(d, boxOf(labels[g])) > p.min_iou;
+    for (int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > p.min_iou;
     for (int g : dontcare)
-      neutral = neutral || (area(d) > 0 && intersection(d, boxOf(labels[g])) / area(d) > p.dontcare_min_overlap);
+      neutral = neutral || (area(d) > 0 && intersection(d, labelBox(labels[g])) / area(d) > p.dontcare_min_overlap);
     out[k] = neutral ? Outcome::Ignored : Outcome::FP;
   }
   return out;
@@ -447,8 +438,8 @@ int main(int argc, char** argv) {
           float best = 0, cover = 0;
           for (const auto& l : labels) {
             if (l.type == "DontCare") continue;
-            best = std::max(best, iou(hyps[i], boxOf(l)));
-            cover = std::max(cover, intersection(hyps[i], boxOf(l)) / std::max(1.f, area(hyps[i])));
+            best = std::max(best, iou(hyps[i], labelBox(l)));
+            cover = std::max(cover, intersection(hyps[i], labelBox(l)) / std::max(1.f, area(hyps[i])));
           }
           std::string where = in_trap[i] ? "trap" : best > 0.2f ? "object, IoU 0.2-0.5" : cover > 0.5f
                                                      ? "part of an object" : best > 0.0f ? "touches an object"
@@ -481,7 +472,7 @@ int main(int argc, char** argv) {
         tr.min_z = std::min(tr.min_z, l.z);
         tr.max_z = std::max(tr.max_z, l.z);
         bool cov = false;
-        for (const auto& h : hyps) cov = cov || iou(h, boxOf(l)) > ep.min_iou;
+        for (const auto& h : hyps) cov = cov || iou(h, labelBox(l)) > ep.min_iou;
         tr.covered += cov ? 1 : 0;
         tr.kept_covered += kept_tp_label[i] ? 1 : 0;
       }
@@ -504,7 +495,7 @@ int main(int argc, char** argv) {
           int best = -1;
           float bi = 0;
           for (size_t k = 0; k < hyps.size(); ++k)
-            if (iou(hyps[k], boxOf(l)) > bi) bi = iou(hyps[k], boxOf(l)), best = int(k);
+            if (iou(hyps[k], labelBox(l)) > bi) bi = iou(hyps[k], labelBox(l)), best = int(k);
           std::printf("  miss %-10s occ %d z %5.1f box %4.0f,%3.0f-%4.0f,%3.0f", l.type.c_str(), l.occluded, l.z,
                       l.x1, l.y1, l.x2, l.y2);
           if (best >= 0)

@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
         const auto labels = readKittiLabels(label_path);
         std::vector<EvalBox> hyps, validated;
         for (const auto& d : det.detections) {
-          const EvalBox b{float(d.x), float(d.y), float(d.x + d.w), float(d.y + d.h), d.score};
+          const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
           hyps.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
           if (d.kept) validated.push_back(b);
         }

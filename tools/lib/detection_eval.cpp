@@ -3,8 +3,6 @@
 #include <algorithm>
 
 namespace nerv {
-namespace {
-
 float area(const EvalBox& b) { return std::max(0.f, b.x2 - b.x1) * std::max(0.f, b.y2 - b.y1); }
 
 float intersection(const EvalBox& a, const EvalBox& b) {
@@ -13,9 +11,9 @@ float intersection(const EvalBox& a, const EvalBox& b) {
   return w > 0 && h > 0 ? w * h : 0.f;
 }
 
-EvalBox boxOf(const KittiLabel& l) { return labelBox(l); }
-
-}  // namespace
+EvalBox detectionBox(int x, int y, int w, int h, float score) {
+  return {float(x), float(y), float(x + w), float(y + h), score};
+}
 
 EvalBox labelBox(const KittiLabel& l) { return {l.x1, l.y1, l.x2 + 1, l.y2 + 1, 0}; }
 
@@ -29,12 +27,12 @@ EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
                          const std::vector<KittiLabel>& labels, const EvalParams& params) {
   std::vector<EvalBox> counted, ignored, dontcare;
   for (const auto& l : labels) {
-    if (l.type == "DontCare") dontcare.push_back(boxOf(l));
+    if (l.type == "DontCare") dontcare.push_back(labelBox(l));
     else if ((!params.classes.empty() && !params.classes.count(l.type)) ||
              (l.z > 0 && l.z > params.max_distance_m))
-      ignored.push_back(boxOf(l));
+      ignored.push_back(labelBox(l));
     else
-      counted.push_back(boxOf(l));
+      counted.push_back(labelBox(l));
   }
   std::vector<EvalBox> dets = detections;
   std::stable_sort(dets.begin(), dets.end(),

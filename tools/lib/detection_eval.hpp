@@ -40,14 +40,17 @@ struct EvalCounts {
   }
 };
 
+float area(const EvalBox& b);
+float intersection(const EvalBox& a, const EvalBox& b);
 float iou(const EvalBox& a, const EvalBox& b);
 
-// A label's box in the detections' coordinates. KITTI label boxes (and the
-// synthetic ones, tight boxes of the pixels seeing the object) give the
-// first and last pixel columns and rows, both included; a detection box
-// x, y, w, h covers columns [x, x + w) and rows [y, y + h). The label's
-// right and bottom therefore move out by one pixel, so a detection covering
+// Both sides of the box convention. A detection box x, y, w, h (hypotheses,
+// DETECTIONS) covers columns [x, x + w) and rows [y, y + h). KITTI label
+// boxes (and the synthetic ones, tight boxes of the pixels seeing the
+// object) give the first and last pixel columns and rows, both included, so
+// a label's right and bottom move out by one pixel: a detection covering
 // exactly the labelled pixels has IoU 1 (PASCAL VOC counts pixels alike).
+EvalBox detectionBox(int x, int y, int w, int h, float score = 0);
 EvalBox labelBox(const KittiLabel& label);
 
 // One frame: detections (any order; matched by descending score) vs labels.

@@ -185,7 +185,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
             const auto labels = readKittiLabels(path);
             std::vector<EvalBox> all, kept;
             for (const auto& d : f.detections->detections) {
-              const EvalBox b{float(d.x), float(d.y), float(d.x + d.w), float(d.y + d.h), d.score};
+              const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
               all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
               if (d.kept) kept.push_back(b);
             }
