@@ -4,8 +4,9 @@
 //   build/bin/bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]
 //       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
 //       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]
+//       [--true-disparity]
 //
-// Per frame: SGBM disparity (the stereo_matcher's library and defaults, cached
+// Per frame: disparity (the stereo_matcher's library and defaults, cached
 // as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
 // stixel::estimateStixels (with the previous frame's SNV pose as prior, as the
 // stixel service does) -> snv::SnvExtrinsicEstimator::process ->
@@ -15,13 +16,18 @@
 //     ones (stixel + SNV), same matcher (tools/lib/detection_eval.hpp);
 //   - recall per class; per-object coverage over the frames (synthetic labels
 //     with 3D positions: objects are followed from frame to frame);
-//   - false positives and lost true positives by verdict and reason;
+//   - false positives and lost true positives by verdict and reason, and false
+//     positives by where they lie (background, or which object: missed, found
+//     by another box, or ignored as too far / hidden);
 //   - hypotheses lying mostly (> 50 %) inside DIR/trap_mask and how many survive;
 //   - ground-model and SNV pose against DIR/extrinsics.txt (or --extrinsics);
 //   - ms per frame of each stage.
 // --visible counts only labels with occlusion < 2 and truncation < 0.5 (others
 // are ignored: neither hit nor miss). --set overrides a config key, e.g.
-// --set validator.max_error_fraction=0.5 (repeatable).
+// --set validator.max_error_fraction=0.5 (repeatable). --true-disparity feeds
+// the ground truth (DIR/disp_occ_0) instead of the matcher's disparity: an
+// oracle for what the matcher costs. --per-frame lists every hypothesis and
+// miss, and for each false positive the label it overlaps most.
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -58,6 +64,7 @@ struct Options {
   float max_distance_m = 1e9f;
   int frames = 0;
   bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
+  bool true_disparity = false;  // the rendered disp_occ_0 instead of the matcher (an oracle)
 };
 
 [[noreturn]] void usage(const std::string& why) {
@@ -65,7 +72,8 @@ struct Options {
   std::fprintf(stderr,
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible]\n"
-               "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n");
+               "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
+               "       [--true-disparity]\n");
   std::exit(2);
 }
 
@@ -89,6 +97,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--per-frame") o.per_frame = true;
     else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
+    else if (a == "--true-disparity") o.true_disparity = true;
     else if (a == "--set") {
       const std::string kv = value();
       const size_t eq = kv.find('=');
@@ -189,6 +198,22 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
   cv::Mat d;
   fixed.convertTo(d, CV_32F, 1.0 / kDisparityScale);
   return d;
+}
+
+// The ground-truth disparity (disp_occ_0, KITTI's uint16 in 1/256 px, 0 = no
+// ground truth) through the wire's fixed point, in place of the matcher: an
+// oracle that separates what the matcher costs from what the later stages cost.
+cv::Mat trueDisparityOf(const DatasetFrame& f) {
+  if (f.disp_gt_path.empty()) throw std::runtime_error("--true-disparity: frame " + f.name + " has no disp_occ_0");
+  const std::string& path = f.disp_gt_path;
+  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (raw.empty() || raw.type() != CV_16U) throw std::runtime_error("cannot read 16-bit " + path);
+  cv::Mat d;
+  raw.convertTo(d, CV_32F, 1.0 / 256);
+  d.setTo(-1.f, raw == 0);
+  cv::Mat out;
+  wireFixed(d).convertTo(out, CV_32F, 1.0 / kDisparityScale);
+  return out;
 }
 
 struct TruePose {
@@ -330,7 +355,8 @@ int main(int argc, char** argv) {
     for (size_t fi = 0; fi < ds.frames.size(); ++fi) {
       const DatasetFrame& f = ds.frames[fi];
       double t_matcher = 0;
-      const cv::Mat disp = disparityOf(f, P.stereo, *matcher, o.cache, t_matcher);
+      const cv::Mat disp = o.true_disparity ? trueDisparityOf(f)
+                                            : disparityOf(f, P.stereo, *matcher, o.cache, t_matcher);
       if (t_matcher > 0) ms_matcher.push_back(t_matcher);
 
       auto t0 = std::chrono::steady_clock::now();
@@ -436,14 +462,28 @@ int main(int argc, char** argv) {
           // Where the false positive lies: on a labelled object (split, merge,
           // loose box) or on background / a trap.
           float best = 0, cover = 0;
-          for (const auto& l : labels) {
+          int best_label = -1;
+          for (size_t li = 0; li < labels.size(); ++li) {
+            const auto& l = labels[li];
             if (l.type == "DontCare") continue;
-            best = std::max(best, iou(hyps[i], labelBox(l)));
+            const float o = iou(hyps[i], labelBox(l));
+            if (o > best) best = o, best_label = int(li);
             cover = std::max(cover, intersection(hyps[i], labelBox(l)) / std::max(1.f, area(hyps[i])));
           }
           std::string where = in_trap[i] ? "trap" : best > 0.2f ? "object, IoU 0.2-0.5" : cover > 0.5f
                                                      ? "part of an object" : best > 0.0f ? "touches an object"
                                                                                           : "background";
+          // Which object the box lies on (the label of highest IoU): one no box
+          // found, one another box found (a second box), or one the count
+          // ignores (beyond the distance, hidden, another class).
+          if (!in_trap[i] && (best > 0.2f || cover > 0.5f) && best_label >= 0) {
+            const KittiLabel& l = labels[best_label];
+            const bool found = std::find(ml_all.begin(), ml_all.end(), best_label) != ml_all.end();
+            where += l.z >= 1e8f ? " (hidden object, ignored)"
+                     : l.z > ep.max_distance_m ? " (object beyond the distance, ignored)"
+                     : !ep.classes.empty() && !ep.classes.count(l.type) ? " (other class, ignored)"
+                     : found ? " (second box on a found object)" : " (missed object)";
+          }
           ++fp_where[where + (vs[i].kept ? " / kept" : " / removed")];
         }
       }
@@ -511,6 +551,18 @@ int main(int argc, char** argv) {
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
                       vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
+          if (out_all[k] == Outcome::FP) {  // a badly fitting box on an object, or nothing there
+            int bl = -1;
+            float bli = 0;
+            for (size_t i = 0; i < labels.size(); ++i)
+              if (labels[i].type != "DontCare" && iou(hyps[k], labelBox(labels[i])) > bli)
+                bli = iou(hyps[k], labelBox(labels[i])), bl = int(i);
+            if (bl >= 0)
+              std::printf("       best label %s IoU %.2f box %4.0f,%3.0f-%4.0f,%3.0f z %.1f%s\n", labels[bl].type.c_str(), bli,
+                          labels[bl].x1, labels[bl].y1, labels[bl].x2, labels[bl].y2, labels[bl].z,
+                          hit[bl] ? " (matched by another)" : "");
+            else std::printf("       best label none\n");
+          }
         }
       }
 
