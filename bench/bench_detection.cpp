@@ -4,7 +4,7 @@
 //   build/bin/bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]
 //       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
 //       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]
-//       [--true-disparity]
+//       [--true-disparity | --oracle MODE]
 //
 // Per frame: disparity (the stereo_matcher's library and defaults, cached
 // as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
@@ -26,7 +26,8 @@
 // are ignored: neither hit nor miss). --set overrides a config key, e.g.
 // --set validator.max_error_fraction=0.5 (repeatable). --true-disparity feeds
 // the ground truth (DIR/disp_occ_0) instead of the matcher's disparity: an
-// oracle for what the matcher costs. --per-frame lists every hypothesis and
+// oracle for what the matcher costs; --oracle MODE takes away one kind of the
+// matcher's errors only (withOracle below). --per-frame lists every hypothesis and
 // miss, and for each false positive the label it overlaps most.
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -64,7 +65,7 @@ struct Options {
   float max_distance_m = 1e9f;
   int frames = 0;
   bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
-  bool true_disparity = false;  // the rendered disp_occ_0 instead of the matcher (an oracle)
+  std::string oracle;  // "", truth, truth-at-valid, no-near-outliers, no-far-outliers, no-outliers
 };
 
 [[noreturn]] void usage(const std::string& why) {
@@ -73,7 +74,7 @@ struct Options {
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible]\n"
                "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
-               "       [--true-disparity]\n");
+               "       [--true-disparity | --oracle MODE]\n");
   std::exit(2);
 }
 
@@ -97,7 +98,14 @@ Options parse(int argc, char** argv) {
     else if (a == "--per-frame") o.per_frame = true;
     else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
-    else if (a == "--true-disparity") o.true_disparity = true;
+    else if (a == "--true-disparity") o.oracle = "truth";
+    else if (a == "--oracle") {
+      o.oracle = value();
+      if (o.oracle != "truth" && o.oracle != "truth-at-valid" && o.oracle != "no-near-outliers" &&
+          o.oracle != "no-far-outliers" && o.oracle != "no-outliers" && o.oracle != "true-inliers")
+        usage("--oracle wants truth, truth-at-valid, true-inliers, no-near-outliers, no-far-outliers or no-outliers, got " +
+              o.oracle);
+    }
     else if (a == "--set") {
       const std::string kv = value();
       const size_t eq = kv.find('=');
@@ -214,6 +222,29 @@ cv::Mat trueDisparityOf(const DatasetFrame& f) {
   cv::Mat out;
   wireFixed(d).convertTo(out, CV_32F, 1.0 / kDisparityScale);
   return out;
+}
+
+// The matcher's disparity with one kind of its errors taken away by the
+// ground truth (both valid and more than 1 px apart is an outlier):
+// "truth-at-valid" keeps the matcher's valid pixels but gives them the true
+// value; "true-inliers" gives the true value to the pixels within 1 px of it
+// (the matcher's subpixel noise) and leaves the outliers; "no-near-outliers" invalidates pixels read nearer than the truth
+// (fattening, smear into textureless background), "no-far-outliers" those read
+// farther (reflections, background bleeding into thin objects), "no-outliers"
+// both. Which of the matcher's errors cost the later stages what.
+cv::Mat withOracle(cv::Mat disp, const cv::Mat& truth, const std::string& mode) {
+  for (int v = 0; v < disp.rows; ++v) {
+    float* d = disp.ptr<float>(v);
+    const float* g = truth.ptr<float>(v);
+    for (int u = 0; u < disp.cols; ++u) {
+      const bool both = d[u] > 0 && g[u] > 0;
+      if (mode == "truth-at-valid") d[u] = d[u] > 0 ? std::max(g[u], 0.f) : 0.f;
+      else if (mode == "true-inliers") { if (both && std::abs(d[u] - g[u]) <= 1.0f) d[u] = g[u]; }
+      else if (both && d[u] - g[u] > 1.0f && mode != "no-far-outliers") d[u] = 0;
+      else if (both && g[u] - d[u] > 1.0f && mode != "no-near-outliers") d[u] = 0;
+    }
+  }
+  return disp;
 }
 
 struct TruePose {
@@ -355,8 +386,10 @@ int main(int argc, char** argv) {
     for (size_t fi = 0; fi < ds.frames.size(); ++fi) {
       const DatasetFrame& f = ds.frames[fi];
       double t_matcher = 0;
-      const cv::Mat disp = o.true_disparity ? trueDisparityOf(f)
-                                            : disparityOf(f, P.stereo, *matcher, o.cache, t_matcher);
+      const cv::Mat disp = o.oracle == "truth" ? trueDisparityOf(f)
+                           : o.oracle.empty() ? disparityOf(f, P.stereo, *matcher, o.cache, t_matcher)
+                                              : withOracle(disparityOf(f, P.stereo, *matcher, o.cache, t_matcher),
+                                                           trueDisparityOf(f), o.oracle);
       if (t_matcher > 0) ms_matcher.push_back(t_matcher);
 
       auto t0 = std::chrono::steady_clock::now();
