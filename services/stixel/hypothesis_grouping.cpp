@@ -212,6 +212,69 @@ int runDirection(const std::vector<const Stixel*>& s, size_t a, size_t b, const 
   return angle_deg > 63.0 ? 1 : angle_deg < 45.0 ? -1 : 0;
 }
 
+// Where a receding run meets a face, when the direction test (runs of four
+// read "along" then "across") cannot tell: beyond ~15 m four strips of a
+// car's rear are 0.4 m wide with 0.2 m of depth noise and read "across" no
+// better than "along", and the strip where rail and car meet mixes both. A
+// vehicle's side recedes from its own rear and is as tall as the vehicle,
+// so a run along the road that recedes towards a flat face (disparities
+// within chain_face_max_spread_px) is another object when
+//  - the face is nearer than the run's far end (the deeper of its last two
+//    strips) by more than chain_reversal_min_jump_px: the run came back
+//    towards the camera, which no vehicle's side does; or
+//  - all strips of the face but one (the strip where they meet may still be
+//    the rail's) stand chain_face_min_height_ratio times as tall as the
+//    run's last four strips (median) and at least chain_face_min_height_m:
+//    a guard rail or a kerb running up to a vehicle at its depth.
+// c is the face's first strip (run on the left) or the run's first strip
+// (face on the left); runs of four strips and of chain_long_run_stixels.
+bool runEndsAtFace(const std::vector<const Stixel*>& s, size_t c, size_t face_run, const StereoCamera& cam,
+                   const GroupingParams& p) {
+  const bool by_jump = p.chain_reversal_min_jump_px > 0, by_height = p.chain_face_min_height_ratio > 0;
+  if (!by_jump && !by_height) return false;
+  auto contiguous = [&](size_t a, size_t b) {
+    for (size_t k = a + 1; k < b; ++k)
+      if (s[k]->u - s[k - 1]->u > s[k - 1]->width) return false;
+    return true;
+  };
+  auto medianHeight = [&](size_t a, size_t b) {
+    std::vector<float> h;
+    for (size_t k = a; k < b; ++k) h.push_back(heightOf(*s[k], cam));
+    std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
+    return h[h.size() / 2];
+  };
+  // face: strips [f0, f1); run: [r0, r1) with its far end at the face side.
+  auto judge = [&](size_t f0, size_t f1, size_t r0, size_t r1, bool run_left) {
+    float lo = s[f0]->disparity, hi = lo;
+    for (size_t k = f0; k < f1; ++k) lo = std::min(lo, s[k]->disparity), hi = std::max(hi, s[k]->disparity);
+    if (hi - lo > p.chain_face_max_spread_px) return false;
+    const size_t end = run_left ? r1 - 1 : r0, start = run_left ? r0 : r1 - 1;
+    const size_t next = run_left ? end - 1 : end + 1;
+    const float far_d = std::min(s[end]->disparity, s[next]->disparity);
+    if (!(far_d < s[start]->disparity)) return false;  // the run recedes towards the face
+    if (by_jump && lo - far_d > p.chain_reversal_min_jump_px) return true;
+    if (!by_height) return false;
+    const size_t n = std::min<size_t>(4, r1 - r0);
+    const float run_h = run_left ? medianHeight(r1 - n, r1) : medianHeight(r0, r0 + n);
+    std::vector<float> fh;  // all strips of the face but one (its edge strip may still be the rail's)
+    for (size_t k = f0; k < f1; ++k) fh.push_back(heightOf(*s[k], cam));
+    std::sort(fh.begin(), fh.end());
+    const float face_h = fh[fh.size() > 1 ? 1 : 0];
+    return face_h >= p.chain_face_min_height_m && face_h >= p.chain_face_min_height_ratio * run_h;
+  };
+  const size_t long_run = static_cast<size_t>(std::max(0, p.chain_long_run_stixels));
+  for (const size_t run : {size_t(4), long_run}) {
+    if (run < 4) continue;
+    if (c >= run && c + face_run <= s.size() && contiguous(c - run, c + face_run) &&
+        runDirection(s, c - run, c, cam) == 1 && judge(c, c + face_run, c - run, c, true))
+      return true;
+    if (c >= face_run && c + run <= s.size() && contiguous(c - face_run, c + run) &&
+        runDirection(s, c, c + run, cam) == 1 && judge(c - face_run, c, c, c + run, false))
+      return true;
+  }
+  return false;
+}
+
 // Surfaces along the road (a guard rail, a wall, a car's side) recede at a
 // nearly constant lateral offset X, faces across it (a car's rear, a
 // pedestrian) at a nearly constant depth Z. A receding surface that ends
@@ -254,7 +317,8 @@ void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
         left = runDirection(s, c - long_run, c, cam), lrun = long_run;
       const bool rail_then_face = left == 1 && right == -1 && s[c - 1]->depth_m > s[c - lrun]->depth_m;
       const bool face_then_rail = face_left == -1 && right == 1 && s[c]->depth_m > s[c + kRun - 1]->depth_m;
-      if (rail_then_face || face_then_rail) cut_u = s[c]->u;
+      if (rail_then_face || face_then_rail || runEndsAtFace(s, c, kRun, cam, p))
+        cut_u = s[c]->u;
     }
     if (cut_u < 0) continue;
     std::vector<const Stixel*> a, b;

@@ -159,6 +159,10 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.structure_min_height_m = params.structure_min_height_m;
   gp.split_chains = params.split_chains;
   gp.chain_long_run_stixels = params.chain_long_run_stixels;
+  gp.chain_reversal_min_jump_px = params.chain_reversal_min_jump_px;
+  gp.chain_face_min_height_ratio = params.chain_face_min_height_ratio;
+  gp.chain_face_min_height_m = params.chain_face_min_height_m;
+  gp.chain_face_max_spread_px = params.chain_face_max_spread_px;
   gp.tower_companions = params.tower_companions;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;

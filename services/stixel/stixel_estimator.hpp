@@ -35,6 +35,10 @@ struct Params {
   float structure_min_height_m = 4.5f;   // stixels this tall (trees, facades: no road user is) never share a box with lower ones; 0 = off
   bool tower_companions = true;          // lower stixels sharing a tower's strips (the lawn before a post) do not cut its run
   int chain_long_run_stixels = 8;        // a rail's run before a face judged over this many strips when four do not decide (0 = off)
+  float chain_reversal_min_jump_px = 1.0f;  // a receding run dropping to a flat face this much nearer [px] is cut there (0 = off)
+  float chain_face_min_height_ratio = 1.5f; // ... as is one meeting a flat face this many times as tall as its end (0 = off)
+  float chain_face_min_height_m = 1.2f;     // ... and at least this tall [m]
+  float chain_face_max_spread_px = 1.0f;    // flat face: four strips' disparities within this [px]
   bool split_chains = true;              // cut a group too deep for one vehicle where a receding surface meets a face at its far end
   float hedge_post_min_ratio = 1.3f;     // a run of strips at most hedge_post_max_width_m wide whose stixels are this many times as tall as the strips beside it (0 = off) ...
   float hedge_post_min_height_m = 0.8f;  // ... each at least this tall ...

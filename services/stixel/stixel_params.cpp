@@ -49,6 +49,10 @@ Params readParams(ConfigSection& c) {
   c.get("structure_min_height_m", p.structure_min_height_m, 0.0, 100.0);
   c.get("split_chains", p.split_chains);
   c.get("chain_long_run_stixels", p.chain_long_run_stixels, 0, 64);
+  c.get("chain_reversal_min_jump_px", p.chain_reversal_min_jump_px, 0.0f, 16.0f);
+  c.get("chain_face_min_height_ratio", p.chain_face_min_height_ratio, 0.0f, 10.0f);
+  c.get("chain_face_min_height_m", p.chain_face_min_height_m, 0.0f, 10.0f);
+  c.get("chain_face_max_spread_px", p.chain_face_max_spread_px, 0.05f, 16.0f);
   c.get("tower_companions", p.tower_companions);
   c.get("min_stixels_per_hypothesis", p.min_stixels_per_hypothesis, 1, 1000);
   c.get("use_extrinsics_prior", p.use_extrinsics_prior);

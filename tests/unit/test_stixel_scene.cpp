@@ -367,6 +367,20 @@ int stripAt(const StereoCamera& cam, double x_m, double z_m) {
   return static_cast<int>(cam.cx + cam.fx * x_m / z_m) / 5 * 5;
 }
 
+// A 0.8 m guard rail at lateral offset x_m (< 0), one strip per 5 px, seen
+// from depth z_from_m to z_to_m.
+std::vector<Stixel> railOf(const StereoCamera& cam, double x_m, double z_from_m, double z_to_m) {
+  std::vector<Stixel> rail;
+  for (int u = stripAt(cam, x_m, z_from_m); u < stripAt(cam, x_m, z_to_m); u += 5)
+    rail.push_back(stixelOfHeight(cam, u, static_cast<float>(cam.fx * x_m / (u + 2.5 - cam.cx)), 0.8f));
+  return rail;
+}
+
+// Appends the strip right of st's last one: depth z, top height_m over its foot.
+void extend(const StereoCamera& cam, std::vector<Stixel>& st, float z, float height_m) {
+  st.push_back(stixelOfHeight(cam, st.back().u + 5, z, height_m));
+}
+
 TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
   // A 0.8 m guard rail 5 m left of the camera, seen from 8 m to 17 m, ends at
   // a car's rear (1.5 m tall, X -4.7..-3.0 m) at 15.5 m: the rail's far end
@@ -375,9 +389,7 @@ TEST(stixelGrouping, AGuardRailRunningUpToACarIsCutBeforeTheCar) {
   GroupingParams p;
   auto at = [&](int u, float z, float height_m) { return stixelOfHeight(cam, u, z, height_m); };
   auto column = [&](double x_m, double z_m) { return stripAt(cam, x_m, z_m); };
-  std::vector<Stixel> rail, car;
-  for (int u = column(-5.0, 8.0); u < column(-5.0, 17.0); u += 5)
-    rail.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
+  std::vector<Stixel> rail = railOf(cam, -5.0, 8.0, 17.0), car;
   for (int u = rail.back().u + 5; u < column(-3.0, 15.5); u += 5) car.push_back(at(u, 15.5f, 1.5f));
   std::vector<Stixel> st = rail;
   st.insert(st.end(), car.begin(), car.end());
@@ -404,22 +416,75 @@ TEST(stixelGrouping, AFarRailWithDepthNoiseIsStillCutBeforeTheCar) {
   // matcher flattens the far rail): over four strips it does not recede, over
   // the eight before the car it does.
   const StereoCamera cam = kittiLikeCamera();
-  GroupingParams p;
-  auto at = [&](int u, float z, float height_m) { return stixelOfHeight(cam, u, z, height_m); };
-  auto column = [&](double x_m, double z_m) { return stripAt(cam, x_m, z_m); };
-  std::vector<Stixel> st;
-  for (int u = column(-5.0, 12.0); u < column(-5.0, 19.0); u += 5)
-    st.push_back(at(u, static_cast<float>(cam.fx * -5.0 / (u + 2.5 - cam.cx)), 0.8f));
-  for (const float z : {19.7f, 19.8f, 20.1f, 19.5f}) st.push_back(at(st.back().u + 5, z, 0.8f));
+  std::vector<Stixel> st = railOf(cam, -5.0, 12.0, 19.0);
+  for (const float z : {19.7f, 19.8f, 20.1f, 19.5f}) extend(cam, st, z, 0.8f);
   const int car_u = st.back().u + 5;
-  for (int u = car_u; u < car_u + 40; u += 5) st.push_back(at(u, 18.3f, 1.5f));
+  for (int k = 0; k < 8; ++k) extend(cam, st, 18.3f, 1.5f);
+  GroupingParams p;
   p.chain_long_run_stixels = 0;
+  p.chain_reversal_min_jump_px = 0;  // the depth reversal would cut here as well
+  p.chain_face_min_height_ratio = 0;
   ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "four strips alone do not see the far rail recede";
   p.chain_long_run_stixels = 8;
   const auto hs = groupStixels(st, cam, p);
   ASSERT_EQ(hs.size(), 2u);
   EXPECT_EQ(hs[1].box.x, car_u);
   EXPECT_EQ(hs[1].num_stixels, 8);
+}
+
+TEST(stixelGrouping, ARailThatComesBackToANearerFaceIsCutThere) {
+  // Highway seed 23 frame 6: a rail 5 m left recedes to 18.8 m, one strip
+  // mixes rail and car (17.1 m), then a car's rear at 16.4-16.8 m. Four noisy
+  // strips of the rear do not read "across", and the strip before them is the
+  // car's, so the direction test leaves rail and car one 7.5 m box; the face
+  // is 2.9 px nearer than the rail's far end.
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st = railOf(cam, -5.0, 12.0, 18.8);
+  extend(cam, st, 17.1f, 1.1f);
+  const int car_u = st.back().u + 5;
+  for (const float z : {16.44f, 16.52f, 16.73f, 16.82f, 16.63f, 16.48f, 16.46f, 16.66f, 16.85f, 16.67f})
+    extend(cam, st, z, 1.5f);
+  GroupingParams p;
+  p.chain_face_min_height_ratio = 0;  // the depth reversal alone
+  p.chain_reversal_min_jump_px = 0;
+  ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "the direction test alone keeps them one box";
+  p.chain_reversal_min_jump_px = 1.0f;
+  const auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  // The mixed strip may go either way; the rail's strips stay with the rail.
+  EXPECT_GE(hs[1].box.x, car_u - 5);
+  EXPECT_LE(hs[1].box.x, car_u);
+  EXPECT_GE(hs[1].num_stixels, 10);
+  EXPECT_LE(hs[1].num_stixels, 11);
+}
+
+TEST(stixelGrouping, ALowRailRunningUpToATallFaceAtItsDepthIsCut) {
+  // Highway seed 23 frame 22: a median rail (0.8 m) recedes to 34.8 m, where
+  // an oncoming van (2.1 m tall) stands at the same depth: no depth step, the
+  // van's front reads 35.4, 35.3, 35.4 m and then a strip 1.2 m deeper. The
+  // van is 2.6 times as tall as the rail's end.
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st = railOf(cam, -12.0, 26.0, 34.8);
+  const float rail_end = st.back().depth_m;
+  const int van_u = st.back().u + 5;
+  for (const float dz : {0.6f, 0.5f, 0.6f, 1.8f, 0.8f, 0.0f, -0.5f, -0.6f}) extend(cam, st, rail_end + dz, 2.1f);
+  GroupingParams p;
+  p.chain_face_min_height_ratio = 0;
+  ASSERT_EQ(groupStixels(st, cam, p).size(), 1u) << "no depth step, no cut";
+  p.chain_face_min_height_ratio = 1.5f;
+  const auto hs = groupStixels(st, cam, p);
+  ASSERT_EQ(hs.size(), 2u);
+  EXPECT_GE(hs[1].box.x, van_u - 5);  // the strip where they meet may go either way
+  EXPECT_LE(hs[1].box.x, van_u);
+
+  // A vehicle's own side is as tall as its rear: a truck's side (3.5 m)
+  // receding to the right of its rear from 20 m stays one with it.
+  std::vector<Stixel> truck;
+  for (int u = stripAt(cam, -3.0, 20.0); u < stripAt(cam, -0.6, 20.0); u += 5)
+    truck.push_back(stixelOfHeight(cam, u, 20.0f, 3.5f));
+  for (float z = 20.8f; z < 28.0f; z += 0.8f) extend(cam, truck, z, 3.5f);
+  p.side_max_stixels = 0;  // the side rule would join a side split off by depth anyway
+  EXPECT_EQ(groupStixels(truck, cam, p).size(), 1u);
 }
 
 TEST(stixelGrouping, AVehiclesRecedingSideJoinsItsBody) {
