@@ -443,7 +443,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   splitChains(groups, tower, clear_above, cam, p);
   joinSides(groups, tower, clear_above, cam, p);
 
-  // Road users beside a vehicle at about its depth, and two pedestrians
+  // Road users beside a vehicle at about its depth (a height step, or the
+  // matcher's blend in the background gap between them), and two pedestrians
   // side by side; after the joins, so a
   // vehicle's side cannot bring the cut part back. Each part's box stays on
   // its side of the cut (the refinement would otherwise extend it over the
@@ -454,16 +455,30 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     if (tower[gi]) continue;
     int cut_u = findHeightStep(groups[gi], cam, input.ground, p.height_steps);
     if (cut_u < 0) cut_u = findPersonPair(groups[gi], cam, input.ground, p.person_pairs);
-    if (cut_u < 0) continue;
+    // A background gap's strips [lo, hi) are dropped from both parts (gap_strips.hpp).
+    int lo = cut_u, hi = cut_u;
+    if (cut_u < 0) {
+      const GapCut gap = findGapStrips(groups[gi], cam, input.ground, p.gap_strips);
+      if (!gap.found) continue;
+      lo = gap.lo, hi = gap.hi;
+    }
     std::vector<const Stixel*> a, b;
-    for (const Stixel* x : groups[gi]) (x->u < cut_u ? a : b).push_back(x);
+    for (const Stixel* x : groups[gi])
+      if (x->u < lo) a.push_back(x);
+      else if (x->u >= hi) b.push_back(x);
+    if (a.empty() || b.empty()) {  // the gap ran to the group's end: only the road user is left
+      groups[gi] = a.empty() ? b : a;
+      if (a.empty()) min_x[gi] = hi;
+      else max_x[gi] = lo;
+      continue;
+    }
     groups[gi] = a;
     groups.insert(groups.begin() + static_cast<long>(gi) + 1, b);
     tower.insert(tower.begin() + static_cast<long>(gi) + 1, false);
     clear_above.insert(clear_above.begin() + static_cast<long>(gi) + 1, kNoSurround);
-    min_x.insert(min_x.begin() + static_cast<long>(gi) + 1, cut_u);
+    min_x.insert(min_x.begin() + static_cast<long>(gi) + 1, hi);
     max_x.insert(max_x.begin() + static_cast<long>(gi) + 1, max_x[gi]);
-    max_x[gi] = cut_u;
+    max_x[gi] = lo;
     ++gi;  // the right part is not cut again
   }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "box_refinement.hpp"
+#include "gap_strips.hpp"
 #include "hedge_posts.hpp"
 #include "height_steps.hpp"
 #include "person_pairs.hpp"
@@ -42,6 +43,7 @@ struct GroupingParams {
   float max_distance_m = 60.0f;        // farther groups are dropped
   float min_single_stixel_height_m = 0.0f;  // a lone stixel this tall is a hypothesis; 0 = never
   HeightStepParams height_steps;       // a road user beside a lower vehicle at its depth leaves its group (height_steps.hpp)
+  GapStripParams gap_strips;           // a road user cut off at the background gap beside it (gap_strips.hpp)
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)

@@ -178,6 +178,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.height_steps.min_depth_step_px = params.depth_step_min_px;
   gp.height_steps.max_end_spread_px = params.depth_step_max_spread_px;
   gp.height_steps.depth_step_min_height_m = params.depth_step_min_height_m;
+  gp.gap_strips.min_dip_px = params.gap_strip_min_dip_px;
+  gp.gap_strips.min_dip_m = params.gap_strip_min_dip_m;
+  gp.gap_strips.max_gap_m = params.gap_strip_max_gap_m;
+  gp.gap_strips.max_end_width_m = params.gap_strip_max_end_width_m;
+  gp.gap_strips.min_height_m = params.gap_strip_min_height_m;
+  gp.gap_strips.max_height_m = params.gap_strip_max_height_m;
+  gp.gap_strips.max_spread_px = params.gap_strip_max_spread_px;
+  gp.gap_strips.min_end_stixels = params.min_stixels_per_hypothesis;
   gp.person_pairs.min_step_px = params.person_pair_min_step_px;
   gp.person_pairs.min_step_m = params.person_pair_min_step_m;
   gp.person_pairs.min_width_m = params.person_pair_min_width_m;

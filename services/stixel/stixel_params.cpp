@@ -80,6 +80,13 @@ Params readParams(ConfigSection& c) {
   c.get("depth_step_min_px", p.depth_step_min_px, 0.0, 100.0);
   c.get("depth_step_max_spread_px", p.depth_step_max_spread_px, 0.0, 100.0);
   c.get("depth_step_min_height_m", p.depth_step_min_height_m, 0.0, 10.0);
+  c.get("gap_strip_min_dip_px", p.gap_strip_min_dip_px, 0.0, 100.0);
+  c.get("gap_strip_min_dip_m", p.gap_strip_min_dip_m, 0.0, 100.0);
+  c.get("gap_strip_max_gap_m", p.gap_strip_max_gap_m, 0.0, 10.0);
+  c.get("gap_strip_max_end_width_m", p.gap_strip_max_end_width_m, 0.0, 10.0);
+  c.get("gap_strip_min_height_m", p.gap_strip_min_height_m, 0.0, 10.0);
+  c.get("gap_strip_max_height_m", p.gap_strip_max_height_m, 0.0, 10.0);
+  c.get("gap_strip_max_spread_px", p.gap_strip_max_spread_px, 0.0, 100.0);
   c.get("person_pair_min_step_px", p.person_pair_min_step_px, 0.0, 100.0);
   c.get("person_pair_min_step_m", p.person_pair_min_step_m, 0.0, 100.0);
   c.get("person_pair_min_width_m", p.person_pair_min_width_m, 0.0, 10.0);
