@@ -482,6 +482,33 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     ++gi;  // the right part is not cut again
   }
 
+  // Slivers of a vehicle's receding side fold into it or are dropped
+  // (side_slivers.hpp); after the cuts, and never a part they cut off (a road
+  // user beside a car) nor into one, so they cannot undo them.
+  auto wasCut = [&](size_t k) {
+    return min_x[k] != std::numeric_limits<int>::min() || max_x[k] != std::numeric_limits<int>::max();
+  };
+  for (bool changed = p.side_slivers.max_stixels > 0; changed;) {
+    changed = false;
+    for (size_t i = 0; i < groups.size() && !changed; ++i) {
+      if (tower[i] || wasCut(i) || static_cast<int>(groups[i].size()) < std::max(1, p.min_stixels_per_hypothesis))
+        continue;
+      for (size_t j = 0; j < groups.size() && !changed; ++j) {
+        if (j == i || tower[j] || wasCut(j)) continue;
+        const SliverAction action = sliverAction(groups[i], groups[j], cam, input.ground, p.side_slivers);
+        if (action == SliverAction::kNone) continue;
+        if (action == SliverAction::kFold) {
+          groups[j].insert(groups[j].end(), groups[i].begin(), groups[i].end());
+          std::sort(groups[j].begin(), groups[j].end(), [](const Stixel* x, const Stixel* y) { return x->u < y->u; });
+        }
+        const auto at = static_cast<long>(i);
+        groups.erase(groups.begin() + at), tower.erase(tower.begin() + at), clear_above.erase(clear_above.begin() + at);
+        min_x.erase(min_x.begin() + at), max_x.erase(max_x.begin() + at);
+        changed = true;
+      }
+    }
+  }
+
   // Overhangs last: a tree's trunk must still be a structure when the
   // structure split runs, or the pedestrian beside it stays in its group.
   if (p.overhang.min_reach_m > 0 && input.disparity && input.ground) {

@@ -13,6 +13,7 @@
 #include "occluded_sides.hpp"
 #include "overhang_cut.hpp"
 #include "post_sides.hpp"
+#include "side_slivers.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
 
@@ -45,6 +46,7 @@ struct GroupingParams {
   HeightStepParams height_steps;       // a road user beside a lower vehicle at its depth leaves its group (height_steps.hpp)
   GapStripParams gap_strips;           // a road user cut off at the background gap beside it (gap_strips.hpp)
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
+  SideSliverParams side_slivers;       // a narrow piece of a vehicle's receding side folds into it (side_slivers.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;

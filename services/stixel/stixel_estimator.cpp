@@ -193,6 +193,16 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.person_pairs.min_height_m = params.person_pair_min_height_m;
   gp.person_pairs.max_height_m = params.person_pair_max_height_m;
   gp.person_pairs.max_spread_px = params.person_pair_max_spread_px;
+  gp.side_slivers.max_stixels = params.side_sliver_max_stixels;
+  gp.side_slivers.max_width_m = params.side_sliver_max_width_m;
+  gp.side_slivers.min_host_width_m = params.side_sliver_min_host_width_m;
+  gp.side_slivers.min_host_height_m = params.side_sliver_min_host_height_m;
+  gp.side_slivers.max_host_height_m = params.side_sliver_max_host_height_m;
+  gp.side_slivers.top_tolerance_m = params.side_sliver_top_tolerance_m;
+  gp.side_slivers.min_fold_share = params.side_sliver_min_fold_share;
+  gp.side_slivers.max_depth_m = params.side_max_depth_m;
+  gp.side_slivers.length_per_height = params.side_length_per_height;
+  gp.side_slivers.column_width_px = params.column_width_px;
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

@@ -94,6 +94,13 @@ Params readParams(ConfigSection& c) {
   c.get("person_pair_min_height_m", p.person_pair_min_height_m, 0.0, 10.0);
   c.get("person_pair_max_height_m", p.person_pair_max_height_m, 0.0, 10.0);
   c.get("person_pair_max_spread_px", p.person_pair_max_spread_px, 0.0, 100.0);
+  c.get("side_sliver_max_stixels", p.side_sliver_max_stixels, 0, 100);
+  c.get("side_sliver_max_width_m", p.side_sliver_max_width_m, 0.0, 10.0);
+  c.get("side_sliver_min_host_width_m", p.side_sliver_min_host_width_m, 0.0, 20.0);
+  c.get("side_sliver_min_host_height_m", p.side_sliver_min_host_height_m, 0.0, 20.0);
+  c.get("side_sliver_max_host_height_m", p.side_sliver_max_host_height_m, 0.0, 20.0);
+  c.get("side_sliver_top_tolerance_m", p.side_sliver_top_tolerance_m, 0.0, 5.0);
+  c.get("side_sliver_min_fold_share", p.side_sliver_min_fold_share, 0.0, 1.0);
   c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
   c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
   c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);

@@ -1,0 +1,151 @@
+// Slivers of a vehicle's receding side (side_slivers.hpp): the last strips of
+// a van's side, flat in depth 1.8 m behind the side's ramp, fold into the van's
+// box; a low piece beside it is dropped; a pedestrian beside a car, one on the
+// car's outward side and a separate car farther behind stay boxes of their
+// own; the keys.
+#include <gtest/gtest.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+
+#include "hypothesis_grouping.hpp"
+#include "stixel_estimator.hpp"
+#include "stixel_key_checks.hpp"
+#include "synthetic_road_scene.hpp"
+
+namespace nerv::stixel {
+namespace {
+
+// A stixel of strip u standing on row 240 (no ground: heights are visible heights).
+Stixel stixelAt(const StereoCamera& cam, int u, float z, float height_m, int bottom_row = 240) {
+  Stixel s;
+  s.u = u, s.width = 5, s.depth_m = z;
+  s.disparity = static_cast<float>(cam.disparityFromDepth(z));
+  s.bottom_row = bottom_row;
+  s.top_row = bottom_row - static_cast<int>(height_m * cam.fy / z);
+  return s;
+}
+
+// wet_road seed 5 frame 19: a van left of the image centre, its rear at 16.5-17 m
+// (u 410-460), its right side receding to 19.7 m (u 460-480), then three strips
+// at 21.4-21.5 m that are not strictly receding (the side's end and the
+// matcher's smear), beyond the grouping's 1.5 m gap. sliver_m: their height.
+// The rear's left seven strips end at 1.7 m (there the van's median top lies,
+// below its 2.2 m corner: the sliver is compared with the higher of the two).
+std::vector<Stixel> vanWithSliver(const StereoCamera& cam, float sliver_m) {
+  std::vector<Stixel> st;
+  for (int k = 0; k < 10; ++k) st.push_back(stixelAt(cam, 410 + 5 * k, 16.6f + 0.04f * k, k < 7 ? 1.7f : 2.2f));
+  const float side[] = {17.5f, 18.4f, 19.65f};
+  for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, 460 + 5 * k, side[k], 2.2f));
+  const float sliver[] = {21.44f, 21.36f, 21.49f};
+  for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, 475 + 5 * k, sliver[k], sliver_m));
+  return st;
+}
+
+GroupingParams defaults() {
+  const Params d;
+  GroupingParams p;
+  p.side_slivers.max_stixels = d.side_sliver_max_stixels;
+  p.side_slivers.max_width_m = d.side_sliver_max_width_m;
+  p.side_slivers.min_host_width_m = d.side_sliver_min_host_width_m;
+  p.side_slivers.min_host_height_m = d.side_sliver_min_host_height_m;
+  p.side_slivers.max_host_height_m = d.side_sliver_max_host_height_m;
+  p.side_slivers.top_tolerance_m = d.side_sliver_top_tolerance_m;
+  p.side_slivers.min_fold_share = d.side_sliver_min_fold_share;
+  return p;
+}
+
+TEST(stixelSideSlivers, AVansSideSliverFoldsIntoItsBox) {
+  const StereoCamera cam = kittiLikeCamera();
+  const std::vector<Stixel> st = vanWithSliver(cam, 2.2f);
+  GroupingParams off = defaults();
+  off.side_slivers.max_stixels = 0;
+  const auto two = groupStixels(st, cam, off);
+  ASSERT_EQ(two.size(), 2u) << "without the rule the sliver is a box of its own";
+  EXPECT_EQ(two[0].box.x + two[0].box.w, 475);
+
+  const auto one = groupStixels(st, cam, defaults());
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].box.x, 410);
+  EXPECT_EQ(one[0].box.x + one[0].box.w, 490) << "the van's box takes the sliver's columns";
+  EXPECT_EQ(one[0].num_stixels, 16);
+}
+
+TEST(stixelSideSlivers, ALowPieceBesideAVanIsDropped) {
+  // 0.6 m beside a 2.2 m van (less than half its visible height): smear beside its
+  // lower part, not its side; the van's box does not take it.
+  const StereoCamera cam = kittiLikeCamera();
+  const auto hs = groupStixels(vanWithSliver(cam, 0.6f), cam, defaults());
+  ASSERT_EQ(hs.size(), 1u);
+  EXPECT_EQ(hs[0].box.x + hs[0].box.w, 475);
+  EXPECT_EQ(hs[0].num_stixels, 13);
+}
+
+TEST(stixelSideSlivers, RoadUsersAndCarsBesideACarKeepTheirBoxes) {
+  const StereoCamera cam = kittiLikeCamera();
+  // A car (1.45 m, 10 strips at 20 m) left of the image centre.
+  auto car = [&] {
+    std::vector<Stixel> st;
+    for (int k = 0; k < 10; ++k) st.push_back(stixelAt(cam, 420 + 5 * k, 20.0f, 1.45f));
+    return st;
+  };
+  struct Case {
+    const char* what;
+    int u;          // first strip of the neighbour (3 strips)
+    float z, height_m;
+  };
+  const Case cases[] = {
+      // Towards the centre, 2 m farther: taller than the car.
+      {"pedestrian beside the car", 470, 22.0f, 1.75f},
+      // On the car's outward side (left of it): no receding side there.
+      {"low piece on the outward side", 405, 22.0f, 1.2f},
+      // Beyond a car's length behind it (6 m): the next car of a row.
+      {"car farther behind", 470, 27.0f, 1.4f},
+  };
+  for (const Case& c : cases) {
+    std::vector<Stixel> st = car();
+    for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, c.u + 5 * k, c.z, c.height_m));
+    std::sort(st.begin(), st.end(), [](const Stixel& a, const Stixel& b) { return a.u < b.u; });
+    const auto hs = groupStixels(st, cam, defaults());
+    EXPECT_EQ(hs.size(), 2u) << c.what;
+  }
+  // Control: the low piece on the centre side is a sliver.
+  std::vector<Stixel> st = car();
+  for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, 470 + 5 * k, 22.0f, 1.2f));
+  EXPECT_EQ(groupStixels(st, cam, defaults()).size(), 1u);
+}
+
+TEST(stixelSideSlivers, APedestrianCutOffACarByTheHeightStepStaysCut) {
+  // height_steps.hpp cuts a 1.8 m end off a 1.4 m car at its depth; the part
+  // it cut is neither a sliver nor a host (and the end, taller than the car,
+  // fails the top test too).
+  const StereoCamera cam = kittiLikeCamera();
+  GroupingParams p = defaults();
+  p.height_steps.min_step_m = 0.2f;
+  std::vector<Stixel> st;
+  for (int k = 0; k < 8; ++k) st.push_back(stixelAt(cam, 440 + 5 * k, 30.0f, 1.4f));
+  for (int k = 0; k < 2; ++k) st.push_back(stixelAt(cam, 480 + 5 * k, 30.5f, 1.8f));
+  EXPECT_EQ(groupStixels(st, cam, p).size(), 2u);
+}
+
+TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
+  expectFloatKeysRead({{"side_sliver_max_width_m", &Params::side_sliver_max_width_m},
+                       {"side_sliver_min_host_width_m", &Params::side_sliver_min_host_width_m},
+                       {"side_sliver_min_host_height_m", &Params::side_sliver_min_host_height_m},
+                       {"side_sliver_max_host_height_m", &Params::side_sliver_max_host_height_m},
+                       {"side_sliver_top_tolerance_m", &Params::side_sliver_top_tolerance_m},
+                       {"side_sliver_min_fold_share", &Params::side_sliver_min_fold_share}},
+                      {0.8, 1.5, 1.1, 4.0, 0.15, 0.4});
+  YAML::Node n;
+  n["side_sliver_max_stixels"] = 0;
+  ConfigSection c(n, "stixel");
+  EXPECT_EQ(readParams(c).side_sliver_max_stixels, 0);
+  expectRejected("side_sliver_max_stixels", -1);
+  expectRejected("side_sliver_max_stixels", 101);
+  expectRejected("side_sliver_min_fold_share", 1.5);
+  EXPECT_EQ(Params{}.side_sliver_max_stixels, 3);
+}
+
+}  // namespace
+}  // namespace nerv::stixel
