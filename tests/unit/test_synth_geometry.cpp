@@ -163,6 +163,40 @@ TEST(synthGeometry, LabelBoxesAreTightBoxesOfVisiblePixels) {
   }
 }
 
+TEST(synthGeometry, LabelMinRunDropsColumnsThinnerThanIt) {
+  // --label-min-run 3: an object box's left and right are its outermost
+  // columns with at least 3 of its pixels (a parked car's 1-2 row roof sliver
+  // above the next car no longer widens it); top and bottom stay tight.
+  SceneSpec spec = loadScene(resolveScenePath("urban", NERV_SOURCE_DIR "/config/scenes"));
+  resizeImage(spec, 621, 188);
+  SceneSequence seq(spec);
+  RenderOptions trimmed;
+  trimmed.label_min_run_px = 3;
+  int narrowed = 0;
+  for (int frame : {0, 7}) {
+    const SynthFrame f = seq.render(frame, trimmed);
+    for (const Label& l : f.labels) {
+      std::vector<int> cols(static_cast<size_t>(f.images.object_id.cols), 0);
+      int y0 = 1 << 30, y1 = -1, x0 = 1 << 30, x1 = -1;
+      for (int v = 0; v < f.images.object_id.rows; ++v)
+        for (int u = 0; u < f.images.object_id.cols; ++u)
+          if (f.images.object_id.at<int>(v, u) == l.solid)
+            ++cols[static_cast<size_t>(u)], y0 = std::min(y0, v), y1 = std::max(y1, v), x0 = std::min(x0, u),
+                x1 = std::max(x1, u);
+      EXPECT_EQ(l.top, y0);
+      EXPECT_EQ(l.bottom, y1);
+      if (l.type == "DontCare") continue;
+      int c0 = -1, c1 = -1;
+      for (int u = 0; u < static_cast<int>(cols.size()); ++u)
+        if (cols[static_cast<size_t>(u)] >= 3) c1 = u, c0 = c0 < 0 ? u : c0;
+      EXPECT_EQ(l.left, c0 < 0 ? x0 : c0);
+      EXPECT_EQ(l.right, c0 < 0 ? x1 : c1);
+      narrowed += l.left != x0 || l.right != x1;
+    }
+  }
+  EXPECT_GE(narrowed, 1) << "no label lost a thin column on two urban frames";
+}
+
 TEST(synthGeometry, ExtrinsicsFileMatchesCameraAndRenderedRoad) {
   SceneSpec spec = loadScene(resolveScenePath("pitch_oscillation", NERV_SOURCE_DIR "/config/scenes"));
   resizeImage(spec, 310, 94);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace nerv::synth {
 namespace {
@@ -35,10 +36,25 @@ double truncation(const Solid& s, const StereoCamera& k, const CameraPose& pose)
   return full > 0 ? std::clamp(1.0 - iw * ih / full, 0.0, 1.0) : 1.0;
 }
 
+// The outermost columns of box [x0..x1] x [y0..y1] that see at least min_run
+// pixels of object id (unchanged when none does).
+void trimSlivers(const cv::Mat& object_id, int id, int min_run, int& x0, int y0, int& x1, int y1) {
+  std::vector<int> cols(static_cast<size_t>(x1 - x0 + 1), 0);
+  for (int v = y0; v <= y1; ++v) {
+    const int* row = object_id.ptr<int>(v);
+    for (int u = x0; u <= x1; ++u) cols[static_cast<size_t>(u - x0)] += row[u] == id;
+  }
+  int c0 = -1, c1 = -1;
+  for (size_t i = 0; i < cols.size(); ++i)
+    if (cols[i] >= min_run) c1 = static_cast<int>(i), c0 = c0 < 0 ? c1 : c0;
+  if (c0 < 0) return;
+  x1 = x0 + c1, x0 += c0;
+}
+
 }  // namespace
 
 std::vector<Label> makeLabels(const World& world, const StereoCamera& k, const CameraPose& pose,
-                              const RenderedFrame& frame, int min_pixels) {
+                              const RenderedFrame& frame, int min_pixels, int min_run_px) {
   const size_t n = world.solids.size();
   std::vector<int> count(n, 0), x0(n, INT32_MAX), y0(n, INT32_MAX), x1(n, -1), y1(n, -1);
   for (int v = 0; v < frame.object_id.rows; ++v) {
@@ -64,6 +80,8 @@ std::vector<Label> makeLabels(const World& world, const StereoCamera& k, const C
     l.top = y0[i];
     l.right = x1[i];
     l.bottom = y1[i];
+    if (min_run_px > 0 && s.type != "DontCare")
+      trimSlivers(frame.object_id, static_cast<int>(i), min_run_px, l.left, l.top, l.right, l.bottom);
     l.visible_px = count[i];
     // Obstacles beyond the labelled range are DontCare, as in KITTI's hand labels.
     if (s.type != "DontCare" && pose.toCamera(s.base).z() > kMaxLabelDistance_m) l.type = "DontCare";

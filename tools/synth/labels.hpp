@@ -27,9 +27,13 @@ struct Label {
 
 // Objects and DontCare structures with at least `min_pixels` visible pixels.
 // Obstacles more than 80 m ahead and background structure (buildings, trees,
-// fences, guard rails) are DontCare.
+// fences, guard rails) are DontCare. With min_run_px > 0 an object box's left
+// and right edges are its outermost columns seeing at least min_run_px of its
+// pixels: a sliver one or two rows thin (a parked car's roof seen above the
+// next car of the row) no longer widens the box; top and bottom stay those of
+// every visible pixel (a variant for measuring, not the default).
 std::vector<Label> makeLabels(const World& world, const StereoCamera& camera, const CameraPose& pose,
-                              const RenderedFrame& frame, int min_pixels = 1);
+                              const RenderedFrame& frame, int min_pixels = 1, int min_run_px = 0);
 
 // One line of a KITTI label_2 file (no newline).
 std::string formatLabel(const Label& label);

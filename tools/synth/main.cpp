@@ -1,6 +1,6 @@
 // nerv_synth: renders a synthetic stereo road sequence with exact ground truth.
 //   nerv_synth --scene NAME_OR_YAML --frames N --out DIR [--seed S] [--width W --height H]
-//              [--scenes-dir DIR] [--supersample K] [--threads T] [--quiet]
+//              [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N] [--quiet]
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -17,7 +17,7 @@ namespace {
 
 const char* const kUsage =
     "usage: nerv_synth --scene NAME_OR_YAML --frames N --out DIR [--seed S] [--width W --height H]\n"
-    "                  [--scenes-dir DIR] [--supersample K] [--threads T] [--quiet]\n"
+    "                  [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N] [--quiet]\n"
     "  NAME resolves to <scenes-dir>/NAME.yaml (default " NERV_SCENES_DIR ")\n";
 
 struct UsageError : std::runtime_error {
@@ -59,6 +59,7 @@ int run(int argc, char** argv) {
     else if (a == "--height") height = toInt(a, v, 16, 8192);
     else if (a == "--supersample") options.supersample = toInt(a, v, 1, 4);
     else if (a == "--threads") options.threads = toInt(a, v, 0, 1);
+    else if (a == "--label-min-run") options.label_min_run_px = toInt(a, v, 0, 64);
     else throw UsageError("unknown option " + a);
   }
   if (scene.empty()) throw UsageError("--scene is required");

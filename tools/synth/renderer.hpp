@@ -22,6 +22,7 @@ struct RenderOptions {
   // 2 rays per pixel), k >= 3 = k x k grid (slow reference).
   int supersample = 2;
   int threads = 0;      // 0 = OpenCV's thread pool, 1 = the calling thread only
+  int label_min_run_px = 0;  // labels: box edges only on rows/columns seeing this many object pixels (0 = every pixel)
 };
 
 struct RenderedFrame {

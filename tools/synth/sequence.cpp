@@ -16,7 +16,7 @@ SynthFrame SceneSequence::render(int frame, const RenderOptions& options) {
   world_.setTime(frame / spec_.camera.fps);
   f.pose = pose(frame);
   f.images = renderFrame(world_, spec_.camera, f.pose, frame, spec_.seed, options);
-  f.labels = makeLabels(world_, camera(), f.pose, f.images);
+  f.labels = makeLabels(world_, camera(), f.pose, f.images, 1, options.label_min_run_px);
   return f;
 }
 
