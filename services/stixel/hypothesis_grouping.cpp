@@ -551,6 +551,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
                 p.tower_edges_above_surround ? clear_above[gi] : kNoSurround, min_x[gi], max_x[gi]);
       widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
       extendOverOccluders(*input.disparity, cam, *input.ground, g, p.occluded_sides, box, min_x[gi], max_x[gi]);
+      raiseBlendedTop(*input.disparity, cam, *input.ground, g, p.blended_top, box);
       box.x0 = std::max(box.x0, min_x[gi]);
       box.x1 = std::min(box.x1, max_x[gi]);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "blended_tops.hpp"
 #include "box_refinement.hpp"
 #include "gap_strips.hpp"
 #include "hedge_posts.hpp"
@@ -48,6 +49,7 @@ struct GroupingParams {
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
   SideSliverParams side_slivers;       // a narrow piece of a vehicle's receding side folds into it (side_slivers.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
+  BlendedTopParams blended_top;        // a narrow far box raised over its head read as a blend (blended_tops.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;
   PostSidesParams post_sides;          // sides of posts widened across matcher holes (post_sides.hpp)

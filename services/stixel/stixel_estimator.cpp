@@ -72,6 +72,18 @@ BoxRefinementParams boxRefinementParams(const Params& params) {
   return r;
 }
 
+BlendedTopParams blendedTopParams(const Params& params) {
+  BlendedTopParams b;
+  b.max_extension_m = params.blended_top_max_extension_m;
+  b.max_width_m = params.blended_top_max_width_m;
+  b.min_top_m = params.blended_top_min_top_m;
+  b.max_top_m = params.blended_top_max_top_m;
+  b.min_distance_m = params.blended_top_min_distance_m;
+  b.min_share = params.blended_top_min_share;
+  b.depth_tolerance_m = params.refine_depth_tolerance_m;
+  return b;
+}
+
 StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
                              const Params& params, const GroundPrior& prior) {
   if (!disparity.empty() && disparity.type() != CV_32F)
@@ -212,6 +224,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.overhang.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.overhang.ground_tolerance_m = params.ground_tolerance_m;
   gp.overhang.column_width_px = params.column_width_px;
+  gp.blended_top = blendedTopParams(params);
   gp.refine_boxes = params.refine_boxes;
   gp.column_width_px = params.column_width_px;
   gp.refinement = boxRefinementParams(params);

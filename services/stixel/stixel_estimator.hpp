@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "blended_tops.hpp"
 #include "box_refinement.hpp"
 #include "config.hpp"
 #include "perception_types.hpp"
@@ -118,6 +119,12 @@ struct Params {
   float overhang_min_width_m = 0.45f;    // ... at least this wide (posts and bare trunks stay whole) ...
   float overhang_max_width_m = 1.2f;     // ... and at most this wide (facades and vehicles stay whole) ...
   float overhang_max_distance_m = 40.0f; // ... and at most this far
+  float blended_top_max_extension_m = 0.5f; // a narrow far box's top raised by at most this much over rows holding a blend of body and background (a head narrower than the matcher's window; blended_tops.hpp); 0 = off
+  float blended_top_max_width_m = 1.5f;   // ... in boxes at most this wide ...
+  float blended_top_min_top_m = 0.9f;     // ... whose top is at least this high over the road ...
+  float blended_top_max_top_m = 1.35f;    // ... and at most this high (a person's shoulders) ...
+  float blended_top_min_distance_m = 20.0f; // ... at least this far ...
+  float blended_top_min_share = 0.35f;    // ... where a blend pixel lies this share of the way from the background beside the box to the body
   bool refine_boxes = true;              // cut box edges at pixel level (box_refinement.hpp)
   float refine_depth_tolerance_m = 1.0f; // refinement: pixels within this depth of the edge stixel are object
   float refine_min_column_fill = 0.25f;  // refinement: an edge column needs this share of the stixel's rows
@@ -145,6 +152,9 @@ Params readParams(ConfigSection& section);
 
 // The box refinement's parameters as estimateStixels passes them (box_refinement.hpp).
 BoxRefinementParams boxRefinementParams(const Params& params);
+
+// The blended head rows' parameters as estimateStixels passes them (blended_tops.hpp).
+BlendedTopParams blendedTopParams(const Params& params);
 
 // Camera pose from snv_extrinsic used when the v-disparity fit is weak.
 struct GroundPrior {

@@ -107,6 +107,12 @@ Params readParams(ConfigSection& c) {
   c.get("overhang_min_width_m", p.overhang_min_width_m, 0.0, 10.0);
   c.get("overhang_max_width_m", p.overhang_max_width_m, 0.0, 100.0);
   c.get("overhang_max_distance_m", p.overhang_max_distance_m, 0.0, 500.0);
+  c.get("blended_top_max_extension_m", p.blended_top_max_extension_m, 0.0, 3.0);
+  c.get("blended_top_max_width_m", p.blended_top_max_width_m, 0.1, 10.0);
+  c.get("blended_top_min_top_m", p.blended_top_min_top_m, 0.0, 5.0);
+  c.get("blended_top_max_top_m", p.blended_top_max_top_m, 0.0, 5.0);
+  c.get("blended_top_min_distance_m", p.blended_top_min_distance_m, 0.0, 500.0);
+  c.get("blended_top_min_share", p.blended_top_min_share, 0.01, 1.0);
   c.get("refine_boxes", p.refine_boxes);
   c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);
   c.get("refine_min_column_fill", p.refine_min_column_fill, 0.0, 1.0);
