@@ -488,14 +488,17 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   auto wasCut = [&](size_t k) {
     return min_x[k] != std::numeric_limits<int>::min() || max_x[k] != std::numeric_limits<int>::max();
   };
-  for (bool changed = p.side_slivers.max_stixels > 0; changed;) {
+  // Pieces stacked on a vehicle's roof line (roof_pieces.hpp) are dropped the same way.
+  for (bool changed = p.side_slivers.max_stixels > 0 || p.roof_pieces.max_stixels > 0; changed;) {
     changed = false;
     for (size_t i = 0; i < groups.size() && !changed; ++i) {
       if (tower[i] || wasCut(i) || static_cast<int>(groups[i].size()) < std::max(1, p.min_stixels_per_hypothesis))
         continue;
       for (size_t j = 0; j < groups.size() && !changed; ++j) {
         if (j == i || tower[j] || wasCut(j)) continue;
-        const SliverAction action = sliverAction(groups[i], groups[j], cam, input.ground, p.side_slivers);
+        SliverAction action = sliverAction(groups[i], groups[j], cam, input.ground, p.side_slivers);
+        if (action == SliverAction::kNone && isRoofPiece(groups[i], groups[j], cam, input.ground, p.roof_pieces))
+          action = SliverAction::kDrop;
         if (action == SliverAction::kNone) continue;
         if (action == SliverAction::kFold) {
           groups[j].insert(groups[j].end(), groups[i].begin(), groups[i].end());

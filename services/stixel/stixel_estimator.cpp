@@ -84,6 +84,18 @@ BlendedTopParams blendedTopParams(const Params& params) {
   return b;
 }
 
+RoofPieceParams roofPieceParams(const Params& params) {
+  RoofPieceParams r;
+  r.max_stixels = params.roof_piece_max_stixels;
+  r.min_host_width_m = params.side_sliver_min_host_width_m;
+  r.min_host_height_m = params.side_sliver_min_host_height_m;
+  r.max_host_height_m = params.side_sliver_max_host_height_m;
+  r.max_gap_px = params.roof_piece_max_gap_px;
+  r.max_depth_m = params.side_max_depth_m;
+  r.top_tolerance_px = params.roof_piece_top_tolerance_px;
+  return r;
+}
+
 StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
                              const Params& params, const GroundPrior& prior) {
   if (!disparity.empty() && disparity.type() != CV_32F)
@@ -215,6 +227,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.side_slivers.max_depth_m = params.side_max_depth_m;
   gp.side_slivers.length_per_height = params.side_length_per_height;
   gp.side_slivers.column_width_px = params.column_width_px;
+  gp.roof_pieces = roofPieceParams(params);
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

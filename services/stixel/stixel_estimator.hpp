@@ -9,6 +9,7 @@
 
 #include "blended_tops.hpp"
 #include "box_refinement.hpp"
+#include "roof_pieces.hpp"
 #include "config.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
@@ -113,6 +114,9 @@ struct Params {
   float side_sliver_max_host_height_m = 4.5f; // ... and at most this high over the road ...
   float side_sliver_top_tolerance_m = 0.1f;  // ... farther than its facing stixel, within its length (side_max_depth_m, side_length_per_height) and no higher than its median or facing top + this is its sliver ...
   float side_sliver_min_fold_share = 0.5f;   // ... folded into it when this share of its visible height, else dropped
+  int roof_piece_max_stixels = 3;        // a group of at most this many strips stacked on a vehicle (side_sliver_min_host_*/max_host_height_m) (roof_pieces.hpp; 0 = off) ...
+  int roof_piece_max_gap_px = 2;         // ... each stixel's bottom within this of the row above the vehicle's stixel in its strip, farther by at most side_max_depth_m ...
+  int roof_piece_top_tolerance_px = 1;   // ... and its top no higher than the vehicle's highest top + this is dropped (inside the vehicle's box)
   float overhang_min_reach_m = 0.8f;     // tops cut below an overhang reaching this far beside the group (tree crowns; overhang_cut.hpp); 0 = off
   float overhang_min_fill = 0.6f;        // ... filling this share of the strips within that reach ...
   float overhang_min_height_m = 1.4f;    // ... starting at least this high over the road, in groups ...
@@ -155,6 +159,9 @@ BoxRefinementParams boxRefinementParams(const Params& params);
 
 // The blended head rows' parameters as estimateStixels passes them (blended_tops.hpp).
 BlendedTopParams blendedTopParams(const Params& params);
+
+// The roof pieces' parameters as estimateStixels passes them (roof_pieces.hpp).
+RoofPieceParams roofPieceParams(const Params& params);
 
 // Camera pose from snv_extrinsic used when the v-disparity fit is weak.
 struct GroundPrior {

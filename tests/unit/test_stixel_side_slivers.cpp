@@ -12,20 +12,11 @@
 #include "hypothesis_grouping.hpp"
 #include "stixel_estimator.hpp"
 #include "stixel_key_checks.hpp"
+#include "stixel_test_stixels.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
 namespace {
-
-// A stixel of strip u standing on row 240 (no ground: heights are visible heights).
-Stixel stixelAt(const StereoCamera& cam, int u, float z, float height_m, int bottom_row = 240) {
-  Stixel s;
-  s.u = u, s.width = 5, s.depth_m = z;
-  s.disparity = static_cast<float>(cam.disparityFromDepth(z));
-  s.bottom_row = bottom_row;
-  s.top_row = bottom_row - static_cast<int>(height_m * cam.fy / z);
-  return s;
-}
 
 // wet_road seed 5 frame 19: a van left of the image centre, its rear at 16.5-17 m
 // (u 410-460), its right side receding to 19.7 m (u 460-480), then three strips
