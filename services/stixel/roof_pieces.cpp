@@ -11,6 +11,14 @@ namespace nerv::stixel {
 bool isRoofPiece(const std::vector<const Stixel*>& piece, const std::vector<const Stixel*>& host_group,
                  const StereoCamera& cam, const GroundModel* ground, const RoofPieceParams& p) {
   if (p.max_stixels <= 0 || piece.empty() || host_group.empty()) return false;
+  // Cheap first (called for every pair of groups): every strip of the piece is one of the host's.
+  auto columns = [](const std::vector<const Stixel*>& g, int& x0, int& x1) {
+    x0 = g.front()->u, x1 = g.front()->u;
+    for (const Stixel* x : g) x0 = std::min(x0, x->u), x1 = std::max(x1, x->u);
+  };
+  int px0, px1, hx0, hx1;
+  columns(piece, px0, px1), columns(host_group, hx0, hx1);
+  if (px0 < hx0 || px1 > hx1) return false;
   const std::vector<const Stixel*> strips = nearestPerStrip(piece);
   const std::vector<const Stixel*> host = nearestPerStrip(host_group);
   if (strips.size() > static_cast<size_t>(p.max_stixels) || host.size() <= strips.size()) return false;

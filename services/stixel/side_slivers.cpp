@@ -49,6 +49,15 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
                           const StereoCamera& cam, const GroundModel* ground, const SideSliverParams& p) {
   constexpr SliverAction kNone = SliverAction::kNone;
   if (p.max_stixels <= 0 || sliver.empty() || host_group.empty()) return kNone;
+  // Cheap first (called for every pair of groups): a sliver touches its host.
+  auto columns = [](const std::vector<const Stixel*>& g, int& x0, int& x1) {
+    x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
+    for (const Stixel* x : g) x0 = std::min(x0, x->u), x1 = std::max(x1, x->u + x->width);
+  };
+  int sx0, sx1, hx0, hx1;
+  columns(sliver, sx0, sx1), columns(host_group, hx0, hx1);
+  const int touch = std::max(1, p.column_width_px);
+  if (sx0 > hx1 + touch || sx1 < hx0 - touch) return kNone;
   const std::vector<const Stixel*> s = nearestPerStrip(sliver);
   const Extent sl = extentOf(s, cam, ground);
   if (sl.strips > static_cast<size_t>(p.max_stixels) || (sl.x1 - sl.x0) * sl.median_m / cam.fx > p.max_width_m)
