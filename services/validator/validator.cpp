@@ -76,6 +76,9 @@ Params readParams(ConfigSection& s) {
   s.get("min_ground_normals", p.min_ground_normals, 1, 1000000);
   s.get("min_unvalidated_height_m", p.min_unvalidated_height_m, 0.0, 10.0);
   s.get("max_surface_tilt_distance_m", p.max_surface_tilt_distance_m, 0.0, 1000.0);
+  s.get("duplicate_min_iou", p.duplicates.min_iou, 0.0, 1.0);
+  s.get("duplicate_max_row_offset_px", p.duplicates.max_row_offset_px, 0, 1000);
+  s.get("duplicate_max_depth_ratio", p.duplicates.max_depth_ratio, 0.0, 1.0);
   if (p.min_height_m >= p.max_height_m)
     throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
   return p;
@@ -140,6 +143,14 @@ std::vector<Verdict> validate(const std::vector<Hypothesis>& hypotheses,
   for (const Hypothesis& h : hypotheses) {
     const auto it = by_id.find(h.id);
     out.push_back(classify(h, it == by_id.end() ? nullptr : it->second, p));
+  }
+  if (p.duplicates.min_iou > 0) {
+    std::vector<int> normals(hypotheses.size(), 0);
+    for (size_t i = 0; i < hypotheses.size(); ++i) {
+      const auto it = by_id.find(hypotheses[i].id);
+      if (it != by_id.end()) normals[i] = std::max(0, it->second->num_normals);
+    }
+    removeDuplicates(hypotheses, normals, out, p.duplicates);
   }
   return out;
 }

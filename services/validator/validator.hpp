@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "duplicates.hpp"
 #include "perception_types.hpp"
 
 namespace nerv::validator {
@@ -33,6 +34,9 @@ struct Params {
   // ... only this near: normal angles degrade with depth noise (~z^2), and a car
   // front at 40 m measures 10-15 deg from the road. 0 = no limit.
   float max_surface_tilt_distance_m = 30.0f;
+  // Second boxes on one object (same rows and depth, IoU above min_iou): the
+  // one with fewer normals is removed (duplicates.hpp). min_iou 0 = off.
+  DuplicateParams duplicates;
 };
 
 Params readParams(ConfigSection& section);
@@ -40,7 +44,8 @@ Params readParams(ConfigSection& section);
 // stats may be null (no normals for this ROI): the verdict is "unvalidated".
 Verdict classify(const Hypothesis& hypothesis, const NormalStats* stats, const Params& params);
 
-// One verdict per hypothesis, in order; stats are matched by roi_id.
+// One verdict per hypothesis, in order; stats are matched by roi_id. Then
+// second boxes on one object are removed (duplicates.hpp).
 std::vector<Verdict> validate(const std::vector<Hypothesis>& hypotheses,
                               const std::vector<NormalStats>& stats, const Params& params);
 
