@@ -204,6 +204,8 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.height_steps.depth_step_min_height_m = params.depth_step_min_height_m;
   gp.gap_strips.min_dip_px = params.gap_strip_min_dip_px;
   gp.gap_strips.min_dip_m = params.gap_strip_min_dip_m;
+  gp.gap_strips.min_end_dip_px = params.gap_strip_min_end_dip_px;
+  gp.gap_strips.max_end_foot_gap_m = params.gap_strip_max_end_foot_gap_m;
   gp.gap_strips.max_gap_m = params.gap_strip_max_gap_m;
   gp.gap_strips.max_end_width_m = params.gap_strip_max_end_width_m;
   gp.gap_strips.min_height_m = params.gap_strip_min_height_m;

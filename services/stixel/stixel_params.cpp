@@ -82,6 +82,8 @@ Params readParams(ConfigSection& c) {
   c.get("depth_step_min_height_m", p.depth_step_min_height_m, 0.0, 10.0);
   c.get("gap_strip_min_dip_px", p.gap_strip_min_dip_px, 0.0, 100.0);
   c.get("gap_strip_min_dip_m", p.gap_strip_min_dip_m, 0.0, 100.0);
+  c.get("gap_strip_min_end_dip_px", p.gap_strip_min_end_dip_px, 0.0, 100.0);
+  c.get("gap_strip_max_end_foot_gap_m", p.gap_strip_max_end_foot_gap_m, 0.0, 10.0);
   c.get("gap_strip_max_gap_m", p.gap_strip_max_gap_m, 0.0, 10.0);
   c.get("gap_strip_max_end_width_m", p.gap_strip_max_end_width_m, 0.0, 10.0);
   c.get("gap_strip_min_height_m", p.gap_strip_min_height_m, 0.0, 10.0);
