@@ -212,6 +212,13 @@ int runDirection(const std::vector<const Stixel*>& s, size_t a, size_t b, const 
   return angle_deg > 63.0 ? 1 : angle_deg < 45.0 ? -1 : 0;
 }
 
+// Strips s[a..b) without a gap between neighbours.
+bool contiguousStrips(const std::vector<const Stixel*>& s, size_t a, size_t b) {
+  for (size_t k = a + 1; k < b; ++k)
+    if (s[k]->u - s[k - 1]->u > s[k - 1]->width) return false;
+  return true;
+}
+
 // Where a receding run meets a face, when the direction test (runs of four
 // read "along" then "across") cannot tell: beyond ~15 m four strips of a
 // car's rear are 0.4 m wide with 0.2 m of depth noise and read "across" no
@@ -232,11 +239,7 @@ bool runEndsAtFace(const std::vector<const Stixel*>& s, size_t c, size_t face_ru
                    const GroupingParams& p) {
   const bool by_jump = p.chain_reversal_min_jump_px > 0, by_height = p.chain_face_min_height_ratio > 0;
   if (!by_jump && !by_height) return false;
-  auto contiguous = [&](size_t a, size_t b) {
-    for (size_t k = a + 1; k < b; ++k)
-      if (s[k]->u - s[k - 1]->u > s[k - 1]->width) return false;
-    return true;
-  };
+  auto contiguous = [&](size_t a, size_t b) { return contiguousStrips(s, a, b); };
   auto medianHeight = [&](size_t a, size_t b) {
     std::vector<float> h;
     for (size_t k = a; k < b; ++k) h.push_back(heightOf(*s[k], cam));
@@ -298,11 +301,7 @@ void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(heightOf(*x, cam));
     std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
     if (zmax - zmin <= std::max(p.side_max_depth_m, p.side_length_per_height * h[h.size() / 2])) continue;
-    auto contiguousRun = [&](size_t a, size_t b) {  // strips s[a..b) without a gap
-      for (size_t k = a + 1; k < b; ++k)
-        if (s[k]->u - s[k - 1]->u > s[k - 1]->width) return false;
-      return true;
-    };
+    auto contiguousRun = [&](size_t a, size_t b) { return contiguousStrips(s, a, b); };
     const size_t long_run = static_cast<size_t>(std::max(0, p.chain_long_run_stixels));
     int cut_u = -1;
     for (size_t c = kRun; c + kRun <= s.size() && cut_u < 0; ++c) {
