@@ -1,13 +1,15 @@
 // Speckle removal: small connected regions of similar disparity, mostly
-// mismatches on weak texture, are invalidated (OpenCV's filterSpeckles on the
-// fixed-point map).
+// mismatches on weak texture, are invalidated (the rule of OpenCV's
+// filterSpeckles on the fixed-point map).
 #pragma once
 
 #include <opencv2/core.hpp>
 
+#include <vector>
+
 namespace nerv::stereo {
 
-// disparity: CV_32F [px], 0 invalid. Regions of fewer than window_px pixels
+// disparity: CV_32F [px], 0 invalid. Regions of at most window_px pixels
 // whose neighbours differ by <= range_px are set to 0, and so is the
 // confidence there when `confidence` (CV_32F, same size) is given. Only rows
 // [row_begin, row_end) are looked at (a region cut by the stripe border counts
@@ -15,6 +17,7 @@ namespace nerv::stereo {
 // no-op. scratch: buffers kept between calls (fresh ones cost page faults).
 struct SpeckleScratch {
   cv::Mat fixed, labels;
+  std::vector<int> parent, run_begin, run_length, region_size;
 };
 void removeSpeckles(cv::Mat& disparity, cv::Mat* confidence, int window_px, int range_px,
                     int row_begin, int row_end, SpeckleScratch& scratch);

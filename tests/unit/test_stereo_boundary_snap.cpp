@@ -1,7 +1,14 @@
-// Foreground fattening correction: constructed rows against the rule, and a
-// rendered post (known edges) through nerv_sgm with and without it.
+// Foreground fattening correction: constructed rows against the rule, random
+// rows against a plain reference implementation of it, and a rendered post
+// (known edges) through nerv_sgm with and without it.
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <vector>
 
 #include "boundary_snap.hpp"
 #include "stereo_matcher.hpp"
@@ -25,6 +32,91 @@ BoundarySnapParams band(int b) {
   p.band_px = b;
   return p;
 }
+
+// The rule of boundary_snap.hpp written out plainly, one pixel and one
+// direction at a time, without the candidate pass, the skipping and the
+// threads of the real one.
+namespace reference {
+
+float nextValid(const cv::Mat& d, int x, int step, int search) {
+  for (int k = 0; k < search; ++k, x += step) {
+    if (x < 0 || x >= d.cols) return 0.0f;
+    if (d.at<float>(0, x) > 0.0f) return d.at<float>(0, x);
+  }
+  return 0.0f;
+}
+
+// Where the background begins when valid pixel x ends a foreground region towards step, or -1.
+int backgroundStart(const cv::Mat& row, int x, int step, const BoundarySnapParams& p) {
+  auto inside = [&](int i) { return i >= 0 && i < row.cols; };
+  auto d = [&](int i) { return row.at<float>(0, i); };
+  const int n = x + step;
+  if (!inside(n)) return -1;
+  if (!(d(n) > 0.0f)) {  // across invalid pixels
+    const float beyond = nextValid(row, n, step, p.hole_search_px);
+    return beyond == 0.0f || d(x) - beyond > p.jump_px ? n : -1;
+  }
+  if (d(x) - d(n) > p.jump_px) return n;  // a step
+  // A falling ramp of up to band pixels between two flat sides, which has
+  // fallen by more than jump at band + 1 pixels too.
+  const int far = x + (p.band_px + 1) * step;
+  if (!inside(far) || !(d(x) - d(far) > p.jump_px)) return -1;
+  for (int m = 2; m <= p.band_px + 1; ++m) {
+    const int k = x + m * step;
+    if (!inside(k) || !(d(k) > 0.0f) || d(k) > d(k - step) + 0.1f) return -1;
+    const float fall = d(x) - d(k);
+    if (fall <= p.jump_px) continue;
+    const float slope = fall / static_cast<float>(m);
+    const int before = x - step, after = k + step;
+    const bool flat_before = inside(before) && d(before) > 0.0f && std::abs(d(x) - d(before)) < 0.5f * slope;
+    const bool flat_after = inside(after) && d(after) > 0.0f && std::abs(d(k) - d(after)) < 0.5f * slope;
+    return flat_before && flat_after ? k : -1;
+  }
+  return -1;
+}
+
+int snapRow(const cv::Mat& gray, cv::Mat& row, cv::Mat& conf, const BoundarySnapParams& p) {
+  const int cols = row.cols, reach = p.band_px + 1;
+  auto d = [&](int i) { return row.at<float>(0, i); };
+  std::vector<bool> cut(static_cast<size_t>(cols), false);
+  for (int x = 0; x < cols; ++x) {
+    if (!(d(x) > 0.0f)) continue;
+    for (const int step : {+1, -1}) {
+      const int bg = backgroundStart(row, x, step, p);
+      if (bg < 0) continue;
+      // strongest intensity step between e and e + step, from band pixels
+      // inside x (while the object goes on) to the pixel before the background
+      int best = x, best_step = 0;
+      for (int e = bg - step; e != x - reach * step; e -= step) {
+        if (e < 0 || e >= cols || e + step < 0 || e + step >= cols) break;
+        if ((e - x) * step <= 0 && !(d(e) > d(x) - p.jump_px)) break;
+        const int st = std::abs(int(gray.at<uchar>(0, e + step)) - int(gray.at<uchar>(0, e)));
+        if (st > best_step) best_step = st, best = e;
+      }
+      if (best_step >= p.min_step)
+        for (int k = best + step; k != bg; k += step) cut[static_cast<size_t>(k)] = true;
+    }
+  }
+  int removed = 0;
+  for (int x = 0; x < cols; ++x)
+    if (cut[static_cast<size_t>(x)]) {
+      row.at<float>(0, x) = 0.0f;
+      if (!conf.empty()) conf.at<float>(0, x) = 0.0f;
+      ++removed;
+    }
+  return removed;
+}
+
+int snap(const cv::Mat& gray, cv::Mat& disparity, cv::Mat& confidence, const BoundarySnapParams& p) {
+  int removed = 0;
+  for (int v = 0; v < disparity.rows; ++v) {
+    cv::Mat row = disparity.row(v), conf = confidence.empty() ? cv::Mat() : confidence.row(v);
+    removed += snapRow(gray.row(v), row, conf, p);
+  }
+  return removed;
+}
+
+}  // namespace reference
 
 }  // namespace
 
@@ -79,6 +171,55 @@ TEST(stereoBoundarySnap, ZeroBandAndEmptyConfidenceAreAccepted) {
   Row r({120, 40, 40, 120}, {10, 20, 20, 10});
   cv::Mat no_conf;
   EXPECT_EQ(snapDisparityBoundaries(r.gray, r.disp, no_conf, band(0)), 0);
+}
+
+// Random rows of flat and slanted pieces, steps, smoothed ramps, single-pixel
+// rises and holes, on a 1/16 px grid so that falls of exactly jump occur,
+// against the plain reference, for several bands, thresholds and widths
+// (also narrower than two bands).
+TEST(stereoBoundarySnap, MatchesThePlainReferenceOnRandomRows) {
+  std::mt19937 rng(5);
+  int total_removed = 0;
+  auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  for (int trial = 0; trial < 300; ++trial) {
+    BoundarySnapParams p;
+    p.band_px = uniform(0, 6);
+    p.jump_px = trial % 3 ? 1.5f : 1.0f;
+    p.min_step = std::vector<int>{8, 0, 30}[static_cast<size_t>(trial % 3)];
+    p.hole_search_px = std::vector<int>{16, 3, 1, 0, 1000}[static_cast<size_t>(trial / 3 % 5)];
+    const int rows = uniform(1, 40), cols = trial < 40 ? uniform(1, 14) : uniform(15, 300);
+    cv::Mat gray(rows, cols, CV_8U), disp(rows, cols, CV_32F), conf(rows, cols, CV_32F);
+    for (int v = 0; v < rows; ++v) {
+      float level = uniform(1, 60) / 2.0f, slope = 0.0f;
+      int gray_level = uniform(0, 255);
+      for (int x = 0; x < cols; ++x) {
+        const int event = uniform(0, 99);
+        if (event < 8) level = uniform(1, 60) / 2.0f;                          // a step
+        else if (event < 12) level = std::max(0.0625f, level - uniform(1, 40) / 16.0f);  // a ramp pixel
+        else if (event < 15) slope = uniform(-8, 8) / 16.0f;                 // a slanted piece
+        else if (event < 18) slope = 0.0f;
+        level = std::max(0.0625f, level + slope);
+        float value = level;
+        if (event >= 18 && event < 24) value = 0.0f;                       // a hole pixel
+        else if (event >= 24 && event < 30) value = level + uniform(-3, 3) / 16.0f;  // noise, rises
+        if (uniform(0, 99) < 15) gray_level = uniform(0, 255);              // an intensity edge
+        gray.at<uchar>(v, x) = static_cast<uchar>(std::clamp(gray_level + uniform(-3, 3), 0, 255));
+        disp.at<float>(v, x) = value;
+        conf.at<float>(v, x) = value > 0.0f ? uniform(1, 100) / 100.0f : 0.0f;
+      }
+    }
+    cv::Mat fast_d = disp.clone(), fast_c = conf.clone(), ref_d = disp.clone(), ref_c = conf.clone();
+    const int fast_n = snapDisparityBoundaries(gray, fast_d, fast_c, p);
+    const int ref_n = reference::snap(gray, ref_d, ref_c, p);
+    ASSERT_EQ(fast_n, ref_n) << "trial " << trial;
+    ASSERT_EQ(cv::norm(fast_d, ref_d, cv::NORM_INF), 0.0) << "trial " << trial;
+    ASSERT_EQ(cv::norm(fast_c, ref_c, cv::NORM_INF), 0.0) << "trial " << trial;
+    cv::Mat fast_d2 = disp.clone(), no_conf;  // without confidence
+    ASSERT_EQ(snapDisparityBoundaries(gray, fast_d2, no_conf, p), ref_n) << "trial " << trial;
+    ASSERT_EQ(cv::norm(fast_d2, ref_d, cv::NORM_INF), 0.0) << "trial " << trial;
+    total_removed += ref_n;
+  }
+  EXPECT_GT(total_removed, 5000) << "the random rows hardly exercise the rule";
 }
 
 // A dark textured post 10 px wide at disparity 24 in front of a textured wall
