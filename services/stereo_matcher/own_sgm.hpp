@@ -5,14 +5,16 @@
 //
 // Passes, each split into tasks that the threads pull from a shared counter:
 //   1. census of both images (tasks: bands of rows);
-//   2. top-down and bottom-up paths over costs computed row by row, each
-//      streamed to a W x H x D byte volume (tasks: direction x band of
-//      columns, as columns are independent along vertical paths);
-//   3. costs of the row again, horizontal paths, sum of the four in 16 bits,
-//      winners for the left and right views, left-right check (tasks: bands
-//      of rows);
+//   2. the top-down path over the upper half of the rows and the bottom-up
+//      path over the lower half, over costs computed row by row, streamed
+//      into one W x H x D byte volume (tasks: direction x band of columns, as
+//      columns are independent along vertical paths);
+//   3. per half, row by row: costs again, the other vertical path continued
+//      from where pass 2 left it (in a cache-resident row), horizontal paths,
+//      average of the four, winners for the left and right views, left-right
+//      check (tasks: the two halves, as the continued path is sequential);
 //   4. speckle removal on the two image halves.
-// Memory: 2 * W * H * D bytes (about 120 MB at 1242 x 375 x 128).
+// Memory: W * H * D bytes (about 60 MB at 1242 x 375 x 128).
 #pragma once
 
 #include <memory>

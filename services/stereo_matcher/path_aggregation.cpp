@@ -123,34 +123,6 @@ void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties 
   }
 }
 
-void aggregateRowsHorizontal2(const uint8_t* cost0, const uint8_t* cost1, int cols, int D,
-                              PathPenalties pen, bool simd, uint8_t* forward0, uint8_t* backward0,
-                              uint8_t* forward1, uint8_t* backward1) {
-#ifdef __AVX2__
-  if (simd && D % 32 == 0 && cols > 0) {
-    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
-    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
-    std::vector<uint8_t> zeros(D, 0);
-    uint8_t m[4] = {0, 0, 0, 0};
-    const uint8_t* prev[4] = {zeros.data(), zeros.data(), zeros.data(), zeros.data()};
-    for (int i = 0; i < cols; ++i) {
-      const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
-      m[0] = stepAvx2(cost0 + f, prev[0], m[0], forward0 + f, D, p1v, p2v);
-      m[1] = stepAvx2(cost0 + b, prev[1], m[1], backward0 + b, D, p1v, p2v);
-      m[2] = stepAvx2(cost1 + f, prev[2], m[2], forward1 + f, D, p1v, p2v);
-      m[3] = stepAvx2(cost1 + b, prev[3], m[3], backward1 + b, D, p1v, p2v);
-      prev[0] = forward0 + f;
-      prev[1] = backward0 + b;
-      prev[2] = forward1 + f;
-      prev[3] = backward1 + b;
-    }
-    return;
-  }
-#endif
-  aggregateRowHorizontal(cost0, cols, D, pen, simd, forward0, backward0);
-  aggregateRowHorizontal(cost1, cols, D, pen, simd, forward1, backward1);
-}
-
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
                           int cols, int D, PathPenalties pen, bool simd, uint8_t* out_row,
                           uint8_t* out_min, uint8_t* stream_row) {

@@ -33,12 +33,6 @@ uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min,
 void aggregateRowHorizontal(const uint8_t* cost, int cols, int num_disparities, PathPenalties pen,
                             bool simd, uint8_t* forward, uint8_t* backward);
 
-// The same for two rows at once (four independent dependency chains in one
-// loop: a horizontal step waits on its minimum, the other chains fill the wait).
-void aggregateRowsHorizontal2(const uint8_t* cost0, const uint8_t* cost1, int cols,
-                              int num_disparities, PathPenalties pen, bool simd, uint8_t* forward0,
-                              uint8_t* backward0, uint8_t* forward1, uint8_t* backward1);
-
 // One row of a vertical path: prev_row / prev_min are the previous row's L and
 // per-pixel minima along the path (nullptr for the first row of the path).
 // stream_row (optional, 32-byte aligned for the SIMD path): a second copy of
