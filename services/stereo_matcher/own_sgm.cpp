@@ -65,7 +65,9 @@ void invalidateBorder(cv::Mat& disparity, cv::Mat& confidence, int border_x, int
 }
 
 struct StripeWorkspace {
-  std::vector<uint8_t> forward, backward, cost_row, vertical[2], vertical_min[2];
+  std::vector<uint8_t> forward, backward, vertical[2], vertical_min[2];
+  // one segment of pass 3: its rows' costs and the first vertical path's rows
+  std::vector<uint8_t> segment_costs, segment_paths, segment_min[2];
   std::vector<uint8_t> sum, right_cost;
   std::vector<int16_t> best_left, best_right, right_index;
 };
@@ -75,9 +77,19 @@ struct PathEdge {
   std::vector<uint8_t> row, min;
 };
 
+// The first vertical path of a half (pass 2) at every k-th row: the rows
+// pass 3 restarts it from. Row j (cols * D bytes) and its minima (cols) are
+// the path's L at path index (j + 1) * k - 1, the row before segment j + 1.
+struct PathCheckpoints {
+  AlignedBytes rows;
+  std::vector<uint8_t> min;
+};
+
 class OwnSgm : public StereoMatcher {
  public:
-  OwnSgm(const Params& p, bool simd) : p_(p), simd_(simd && pathSimdAvailable()) {
+  OwnSgm(const Params& p, bool simd, int segment_rows)
+      : p_(p), simd_(simd && pathSimdAvailable()), segment_rows_(segment_rows) {
+    CV_Assert(segment_rows_ >= 1);
     checkParams(p_);
     pen_.p1 = p.sgm_p1;
     pen_.p2 = p.sgm_p2;
@@ -91,8 +103,17 @@ class OwnSgm : public StereoMatcher {
     const int rows = left.rows, cols = left.cols, D = p_.num_disparities;
     const int threads = std::max(1, std::min(p_.threads, rows));
     const size_t row_bytes = static_cast<size_t>(cols) * D;
-    const size_t volume_bytes = row_bytes * rows;
-    volume_.resize(volume_bytes);
+    const int h = rows / 2;
+    const int k = segment_rows_;
+    // Path index i runs along a half's first vertical path (pass 2): top-down
+    // in the upper half (row i), bottom-up in the lower (row rows - 1 - i).
+    const int half_rows[2] = {h, rows - h};
+    auto row_of = [&](int half, int i) { return half == 0 ? i : rows - 1 - i; };
+    for (int half = 0; half < 2; ++half) {
+      const int n = std::max(half_rows[half] - 1, 0) / k;  // segments after the first one
+      checkpoints_[half].rows.resize(row_bytes * n);
+      checkpoints_[half].min.resize(static_cast<size_t>(cols) * n);
+    }
     for (PathEdge* edge : {&down_edge_, &up_edge_}) {
       edge->row.resize(row_bytes);
       edge->min.resize(cols);
@@ -131,21 +152,23 @@ class OwnSgm : public StereoMatcher {
     });
     PROFILE_MARK("census");
     // 2. vertical paths, each over half of the rows (split at h): top-down over
-    // [0, h), bottom-up over [h, rows), streamed into one volume; each keeps its
+    // [0, h), bottom-up over [h, rows); of each only every k-th row is kept
+    // (streamed to the checkpoints), where pass 3 recomputes it from, and its
     // last row (top-down at h - 1, bottom-up at h), where pass 3 continues it
     // over the other half. Columns are independent along vertical paths, so
     // each (direction, column band) is a task.
-    const int h = rows / 2;
     constexpr int kColumnBands = 8;
     parallelTasks(threads, 2 * kColumnBands, [&](int task, int) {
       const bool downward = task % 2 == 0;
       const int band = task / 2;
       const int x0 = cols * band / kColumnBands, x1 = cols * (band + 1) / kColumnBands;
       const int n = x1 - x0;
-      const int path_rows = downward ? h : rows - h;
+      const int half = downward ? 0 : 1;
+      const int path_rows = half_rows[half];
       if (n <= 0 || path_rows <= 0) return;
-      // The path runs in two cache-resident row buffers; each finished row is
-      // streamed to the volume that pass 3 reads.
+      PathCheckpoints& kept = checkpoints_[half];
+      // The path runs in two cache-resident row buffers; every k-th finished
+      // row is streamed to the checkpoints that pass 3 reads.
       std::vector<uint8_t> mins_a(n), mins_b(n), row_a(static_cast<size_t>(n) * D),
           row_b(static_cast<size_t>(n) * D), costs(static_cast<size_t>(n) * D);
       uint8_t* prev_min = mins_a.data();
@@ -154,11 +177,15 @@ class OwnSgm : public StereoMatcher {
       uint8_t* out_row = row_b.data();
       const size_t x_offset = static_cast<size_t>(x0) * D;
       for (int i = 0; i < path_rows; ++i) {
-        const int y = downward ? i : rows - 1 - i;
+        const int y = row_of(half, i);
         censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, x0,
                         x1, p_.min_disparity, D, costs.data());
+        const int checkpoint = (i + 1) % k == 0 && i + 1 < path_rows ? (i + 1) / k - 1 : -1;
         aggregateRowVertical(costs.data(), i == 0 ? nullptr : prev_row, prev_min, n, D, pen_, simd_,
-                             out_row, out_min, volume_.data() + row_bytes * y + x_offset);
+                             out_row, out_min,
+                             checkpoint < 0 ? nullptr : kept.rows.data() + row_bytes * checkpoint + x_offset);
+        if (checkpoint >= 0)
+          std::copy(out_min, out_min + n, kept.min.begin() + static_cast<size_t>(cols) * checkpoint + x0);
         std::swap(prev_min, out_min);
         std::swap(prev_row, out_row);
       }
@@ -168,51 +195,75 @@ class OwnSgm : public StereoMatcher {
       streamingFence();
     });
     PROFILE_MARK("vertical");
-    // 3. per half, row by row: the row's costs, once for both the other
-    // vertical path, continued from the edge (bottom-up from h up to row 0,
-    // top-down from h - 1 down to the last row) in a cache-resident row, and
-    // the horizontal paths; then the average of the four, winners for the left
-    // and right views and the left-right check. A path is sequential in rows,
-    // so the tasks are the two halves. One row at a time: two rows with
-    // interleaved horizontal paths (four chains) measured no faster here.
+    // 3. per half, in segments of k rows walked in the direction of the
+    // continued path (the upper half from h - 1 up to row 0, the lower from h
+    // down): first the half's own vertical path is recomputed over the
+    // segment from the checkpoint before it, in its own direction, keeping
+    // its rows and their costs (2 * k rows, in L2 and L3); then per row,
+    // from the segment's far end back, the other vertical path continued from
+    // the edge (in a cache-resident row), the horizontal paths on the kept
+    // costs, the average of the four, winners for the left and right views
+    // and the left-right check. Costs are computed twice per pixel (pass 2 and
+    // here), the first path twice as well, and no volume goes through memory.
+    // A path is sequential in rows, so the tasks are the two halves. One row
+    // at a time: two rows with interleaved horizontal paths (four chains)
+    // measured no faster here.
     WinnerOptions options;
     options.uniqueness_ratio = p_.uniqueness_ratio;
     options.subpixel = p_.subpixel;
     parallelTasks(threads, 2, [&](int half, int worker) {
       const bool top = half == 0;
-      const int half_rows = top ? h : rows - h;
-      if (half_rows <= 0) return;
+      const int n = half_rows[half];
+      if (n <= 0) return;
       StripeWorkspace& w = workspaces_[worker];
-      w.cost_row.resize(row_bytes);
+      w.segment_costs.resize(row_bytes * std::min(k, n));
+      w.segment_paths.resize(row_bytes * std::min(k, n));
       w.forward.resize(row_bytes);
       w.backward.resize(row_bytes);
       for (int j = 0; j < 2; ++j) {
         w.vertical[j].resize(row_bytes);
         w.vertical_min[j].resize(cols);
+        w.segment_min[j].resize(cols);
       }
       w.sum.resize(row_bytes);
       w.best_left.resize(cols);
       w.best_right.resize(cols);
+      const PathCheckpoints& kept = checkpoints_[half];
       const PathEdge& edge = top ? up_edge_ : down_edge_;
       const uint8_t* prev_row = top || h > 0 ? edge.row.data() : nullptr;  // no top half: the path starts here
       const uint8_t* prev_min = edge.min.data();
-      for (int i = 0; i < half_rows; ++i) {
-        const int y = top ? h - 1 - i : h + i;
-        const int v = i % 2;  // the continued path's two row buffers alternate
-        censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, 0,
-                        cols, p_.min_disparity, D, w.cost_row.data());
-        aggregateRowVertical(w.cost_row.data(), prev_row, prev_min, cols, D, pen_, simd_,
-                             w.vertical[v].data(), w.vertical_min[v].data());
-        prev_row = w.vertical[v].data();
-        prev_min = w.vertical_min[v].data();
-        aggregateRowHorizontal(w.cost_row.data(), cols, D, pen_, simd_, w.forward.data(),
-                               w.backward.data());
-        // paths in the order the rounding avg(avg(->, <-), avg(down, up)) expects
-        const uint8_t* stored = volume_.data() + row_bytes * y;
-        const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(),
-                                         top ? stored : w.vertical[v].data(),
-                                         top ? w.vertical[v].data() : stored};
-        selectRowWinners(paths, cols, options, w, disparity.ptr<float>(y), confidence.ptr<float>(y));
+      int v = 0;  // the continued path's two row buffers alternate
+      for (int s = (n - 1) / k * k; s >= 0; s -= k) {
+        const int e = std::min(n, s + k);
+        // the first path over [s, e), from the checkpoint at s - 1
+        const uint8_t* first_row = s == 0 ? nullptr : kept.rows.data() + row_bytes * (s / k - 1);
+        const uint8_t* first_min = s == 0 ? nullptr : kept.min.data() + static_cast<size_t>(cols) * (s / k - 1);
+        for (int i = s; i < e; ++i) {
+          const int y = row_of(half, i);
+          uint8_t* cost = w.segment_costs.data() + row_bytes * (i - s);
+          uint8_t* path = w.segment_paths.data() + row_bytes * (i - s);
+          uint8_t* path_min = w.segment_min[(i - s) % 2].data();
+          censusCostRange(census_left_.ptr<uint32_t>(y), right_reversed_.ptr<uint32_t>(y), cols, 0,
+                          cols, p_.min_disparity, D, cost);
+          aggregateRowVertical(cost, first_row, first_min, cols, D, pen_, simd_, path, path_min);
+          first_row = path;
+          first_min = path_min;
+        }
+        for (int i = e - 1; i >= s; --i, v ^= 1) {
+          const int y = row_of(half, i);
+          const uint8_t* cost = w.segment_costs.data() + row_bytes * (i - s);
+          aggregateRowVertical(cost, prev_row, prev_min, cols, D, pen_, simd_, w.vertical[v].data(),
+                               w.vertical_min[v].data());
+          prev_row = w.vertical[v].data();
+          prev_min = w.vertical_min[v].data();
+          aggregateRowHorizontal(cost, cols, D, pen_, simd_, w.forward.data(), w.backward.data());
+          // paths in the order the rounding avg(avg(->, <-), avg(down, up)) expects
+          const uint8_t* first = w.segment_paths.data() + row_bytes * (i - s);
+          const uint8_t* const paths[4] = {w.forward.data(), w.backward.data(),
+                                           top ? first : w.vertical[v].data(),
+                                           top ? w.vertical[v].data() : first};
+          selectRowWinners(paths, cols, options, w, disparity.ptr<float>(y), confidence.ptr<float>(y));
+        }
       }
     });
     PROFILE_MARK("horizontal+winners");
@@ -284,9 +335,10 @@ class OwnSgm : public StereoMatcher {
   Params p_;
   bool simd_;
   PathPenalties pen_;
+  int segment_rows_;  // k: rows between the checkpoints of the first vertical path
   cv::Mat census_left_, census_right_, right_reversed_;
-  // top-down path on rows [0, h), bottom-up on [h, rows) (pass 2)
-  AlignedBytes volume_;
+  // pass 2: top-down path on rows [0, h) ([0]), bottom-up on [h, rows) ([1])
+  PathCheckpoints checkpoints_[2];
   PathEdge down_edge_, up_edge_;
   std::vector<StripeWorkspace> workspaces_;
   SpeckleScratch speckle_scratch_[2];
@@ -295,8 +347,8 @@ class OwnSgm : public StereoMatcher {
 
 }  // namespace
 
-std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd) {
-  return std::make_unique<OwnSgm>(params, use_simd);
+std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd, int segment_rows) {
+  return std::make_unique<OwnSgm>(params, use_simd, segment_rows);
 }
 
 }  // namespace nerv::stereo

@@ -6,15 +6,19 @@
 // Passes, each split into tasks that the threads pull from a shared counter:
 //   1. census of both images (tasks: bands of rows);
 //   2. the top-down path over the upper half of the rows and the bottom-up
-//      path over the lower half, over costs computed row by row, streamed
-//      into one W x H x D byte volume (tasks: direction x band of columns, as
+//      path over the lower half, over costs computed row by row; every k-th
+//      row is kept as a checkpoint (tasks: direction x band of columns, as
 //      columns are independent along vertical paths);
-//   3. per half, row by row: costs again, the other vertical path continued
-//      from where pass 2 left it (in a cache-resident row), horizontal paths,
-//      average of the four, winners for the left and right views, left-right
-//      check (tasks: the two halves, as the continued path is sequential);
+//   3. per half, in segments of k rows: the half's own vertical path
+//      recomputed over the segment from its checkpoint, with the segment's
+//      costs kept; then row by row, against the path's direction, the other
+//      vertical path continued from where pass 2 left it (in a cache-resident
+//      row), horizontal paths, average of the four, winners for the left and
+//      right views, left-right check (tasks: the two halves, as the continued
+//      path is sequential);
 //   4. speckle removal on the two image halves.
-// Memory: W * H * D bytes (about 60 MB at 1242 x 375 x 128).
+// Memory: W * H * D / k bytes of checkpoints (about 7.5 MB at 1242 x 375 x 128,
+// k = 8) and 2 * k * W * D bytes per thread.
 #pragma once
 
 #include <memory>
@@ -23,7 +27,15 @@
 
 namespace nerv::stereo {
 
-// use_simd = false runs the scalar aggregation (the SIMD-vs-scalar test).
-std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd = true);
+// Rows between the checkpoints pass 2 keeps of a half's first vertical path
+// (pass 3 recomputes the path over each segment of this many rows): the
+// segment's costs and path rows, 2 * k * W * D bytes, stay in cache (L2 and
+// L3); 4 and 16 measured no faster than 8 (docs/stereo.md).
+constexpr int kSgmSegmentRows = 8;
+
+// use_simd = false runs the scalar aggregation (the SIMD-vs-scalar test);
+// segment_rows: k, other than kSgmSegmentRows only in tests.
+std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd = true,
+                                            int segment_rows = kSgmSegmentRows);
 
 }  // namespace nerv::stereo

@@ -218,38 +218,42 @@ TEST(stereoSgm, MatchesReferenceIntegerDisparities) {
 }
 
 TEST(stereoSgm, HalfSplitMatchesReferenceOnFewAndOddRows) {
-  // Each vertical path runs over one half of the rows into the volume and is
-  // continued over the other half from the saved edge row: heights where a
-  // half has no row, one row, or one row more than the other. A 15x1 census
-  // leaves no border rows, so the rows where the paths start and meet are
-  // compared too; 9x7 (the default) with the road band checks odd heights.
+  // Each vertical path runs over one half of the rows, kept every k rows,
+  // and is continued over the other half from the saved edge row; pass 3
+  // recomputes it per k-row segment from the checkpoint before it: heights
+  // where a half has no row, one row, or one row more than the other, halves
+  // and last segments shorter than k, and several segment boundaries (37 and
+  // 70 rows with k = 3). A 15x1 census leaves no border rows, so the rows
+  // where the paths start and meet are compared too; 9x7 (the default) with
+  // the road band checks odd heights.
   struct Case { int census_width, census_height, road_census_height; };
   for (const Case& c : {Case{15, 1, 1}, Case{9, 7, 3}})
-    for (const int rows : {1, 2, 3, 4, 5, 9, 10, 11, 37})
-      for (const int D : {32, 48})  // AVX2 path (where built) and scalar fallback
-        for (const bool simd : {true, false})
-          for (const int threads : {1, 2}) {
-            const cv::Mat right = texture(rows, 96, 5, 1.2);
-            const cv::Mat left = shifted(right, 9.0);
-            Params p = plainParams(D, 2);
-            p.census_width = c.census_width;
-            p.census_height = c.census_height;
-            p.road_census_height = c.road_census_height;
-            p.road_census_from = 0.6;
-            p.threads = threads;
-            cv::Mat disparity;
-            createOwnSgm(p, simd)->compute(left, right, disparity);
-            cv::Mat expected = referenceSgm(left, right, p);
-            expected.setTo(0.0f, expected <= 0.0f);
-            expected = referenceMedianFill(expected);
-            ASSERT_EQ(disparity.size(), left.size());
-            ASSERT_EQ(cv::countNonZero(disparity != expected), 0)
-                << "rows " << rows << " census height " << c.census_height << " D " << D
-                << " simd " << simd << " threads " << threads;
-            if (c.census_height == 1 && rows >= 3) {  // not vacuous
-              EXPECT_GT(cv::countNonZero(disparity == 9.0f), disparity.total() / 2) << "rows " << rows;
+    for (const int rows : {1, 2, 3, 4, 5, 9, 10, 11, 37, 70})
+      for (const int segment_rows : {kSgmSegmentRows, 3})
+        for (const int D : {32, 48})  // AVX2 path (where built) and scalar fallback
+          for (const bool simd : {true, false})
+            for (const int threads : {1, 2}) {
+              const cv::Mat right = texture(rows, 96, 5, 1.2);
+              const cv::Mat left = shifted(right, 9.0);
+              Params p = plainParams(D, 2);
+              p.census_width = c.census_width;
+              p.census_height = c.census_height;
+              p.road_census_height = c.road_census_height;
+              p.road_census_from = 0.6;
+              p.threads = threads;
+              cv::Mat disparity;
+              createOwnSgm(p, simd, segment_rows)->compute(left, right, disparity);
+              cv::Mat expected = referenceSgm(left, right, p);
+              expected.setTo(0.0f, expected <= 0.0f);
+              expected = referenceMedianFill(expected);
+              ASSERT_EQ(disparity.size(), left.size());
+              ASSERT_EQ(cv::countNonZero(disparity != expected), 0)
+                  << "rows " << rows << " k " << segment_rows << " census height " << c.census_height << " D " << D
+                  << " simd " << simd << " threads " << threads;
+              if (c.census_height == 1 && rows >= 3) {  // not vacuous
+                EXPECT_GT(cv::countNonZero(disparity == 9.0f), disparity.total() / 2) << "rows " << rows;
+              }
             }
-          }
 }
 
 TEST(stereoSgm, PathStepSimdEqualsScalar) {
