@@ -68,22 +68,22 @@ inline int horizontalMin(__m256i v) {
 }
 
 // Fused per-pixel loop; D % 32 == 0, D < 256 (byte indices, 255 = no candidate).
-void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_disparity,
-                  WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
-                  int16_t* best_right) {
+// NB = D / 32 registers per pixel: the right view's running minimum and the
+// averaged costs stay in registers (the compiler unrolls the NB loops).
+template <int NB>
+void fusedWinnersN(const uint8_t* const paths[4], int cols, int min_disparity, WinnerOptions opt,
+                   int16_t* best, float* disparity, float* confidence, int16_t* best_right) {
+  constexpr int D = 32 * NB;
   // Right view without a scattered running minimum: the candidates (x, d) and
   // (x - 1, d - 1) see the same right pixel, so the best candidate so far per
   // right pixel is a D-vector shifted by one lane per left pixel:
   // run_x[d] = min(S(x, d), run_{x-1}[d - 1]); lane D - 1 is final then.
-  alignas(32) uint8_t run_cost[256];
-  alignas(32) uint8_t run_index[256];
-  alignas(32) uint8_t s[256];
-  std::fill(run_cost, run_cost + D, uint8_t{255});
-  std::fill(run_index, run_index + D, uint8_t{255});
+  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
+  __m256i run_cost[NB], run_index[NB], v[NB];
+  for (int j = 0; j < NB; ++j) run_cost[j] = run_index[j] = full;
   if (best_right) std::fill(best_right, best_right + cols, int16_t{-1});
   const __m256i lanes = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
                                          17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
-  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
   // lane i of the result = lane i - 1 of cur (lane 0 = last lane of below)
   auto shift_in = [](__m256i cur, __m256i below) {
     return _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 15);
@@ -91,53 +91,48 @@ void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_dispar
   for (int x = 0; x < cols; ++x) {
     const size_t o = static_cast<size_t>(x) * D;
     __m256i vmin = full;
-    __m256i below_cost = full, below_index = full;  // run_{x-1}[-1]: no candidate
-    for (int k = 0; k < D; k += 32) {
-      const __m256i v = _mm256_avg_epu8(_mm256_avg_epu8(load(paths[0] + o + k), load(paths[1] + o + k)),
-                                        _mm256_avg_epu8(load(paths[2] + o + k), load(paths[3] + o + k)));
-      _mm256_store_si256(reinterpret_cast<__m256i*>(s + k), v);
-      vmin = _mm256_min_epu8(vmin, v);
-      if (best_right) {
-        const __m256i prev_cost = load(run_cost + k), prev_index = load(run_index + k);
-        const __m256i shifted_cost = shift_in(prev_cost, below_cost);
-        const __m256i shifted_index = shift_in(prev_index, below_index);
-        below_cost = prev_cost;
-        below_index = prev_index;
-        // keep the earlier (smaller d) candidate unless v is strictly smaller;
-        // an empty lane (index 255) always takes v
-        const __m256i keep = _mm256_andnot_si256(
-            _mm256_cmpeq_epi8(shifted_index, full),
-            _mm256_cmpeq_epi8(_mm256_max_epu8(v, shifted_cost), v));
-        const __m256i d = _mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(k)));
-        _mm256_store_si256(reinterpret_cast<__m256i*>(run_cost + k), _mm256_blendv_epi8(v, shifted_cost, keep));
-        _mm256_store_si256(reinterpret_cast<__m256i*>(run_index + k), _mm256_blendv_epi8(d, shifted_index, keep));
-      }
+    for (int j = 0; j < NB; ++j) {
+      const int k = 32 * j;
+      v[j] = _mm256_avg_epu8(_mm256_avg_epu8(load(paths[0] + o + k), load(paths[1] + o + k)),
+                             _mm256_avg_epu8(load(paths[2] + o + k), load(paths[3] + o + k)));
+      vmin = _mm256_min_epu8(vmin, v[j]);
     }
     if (best_right) {
+      // from the top register down, so each shift reads the register below before it changes
+      for (int j = NB - 1; j >= 0; --j) {
+        const __m256i below_cost = j > 0 ? run_cost[j - 1] : full;  // run_{x-1}[-1]: no candidate
+        const __m256i below_index = j > 0 ? run_index[j - 1] : full;
+        const __m256i shifted_cost = shift_in(run_cost[j], below_cost);
+        const __m256i shifted_index = shift_in(run_index[j], below_index);
+        // keep the earlier (smaller d) candidate unless v is strictly smaller;
+        // an empty lane (index 255) always takes v
+        const __m256i keep = _mm256_andnot_si256(_mm256_cmpeq_epi8(shifted_index, full),
+                                                 _mm256_cmpeq_epi8(_mm256_max_epu8(v[j], shifted_cost), v[j]));
+        const __m256i d = _mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(32 * j)));
+        run_cost[j] = _mm256_blendv_epi8(v[j], shifted_cost, keep);
+        run_index[j] = _mm256_blendv_epi8(d, shifted_index, keep);
+      }
       const int xr = x - min_disparity - (D - 1);  // its last candidate was (x, D - 1)
-      if (xr >= 0) best_right[xr] = run_index[D - 1];
+      if (xr >= 0) best_right[xr] = static_cast<int16_t>(static_cast<uint8_t>(_mm256_extract_epi8(run_index[NB - 1], 31)));
     }
     const int s1 = horizontalMin(vmin);
     const __m256i target = _mm256_set1_epi8(static_cast<char>(s1));
     int d1 = 0;
-    for (int d = 0; d < D; d += 32) {
-      const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(
-          _mm256_cmpeq_epi8(_mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)), target)));
+    for (int j = 0; j < NB; ++j) {
+      const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(v[j], target)));
       if (mask) {
-        d1 = d + __builtin_ctz(mask);
+        d1 = 32 * j + __builtin_ctz(mask);
         break;
       }
     }
     // second best: lanes d1 - 1 .. d1 + 1 masked to 255 by an index compare
-    // (in registers: scalar stores into s followed by vector loads would stall
-    // store forwarding)
     const __m256i lo = _mm256_set1_epi8(static_cast<char>(d1 - 1));
     const __m256i two = _mm256_set1_epi8(2);
     __m256i m2 = full;
-    for (int d = 0; d < D; d += 32) {
-      const __m256i t = _mm256_sub_epi8(_mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(d))), lo);
+    for (int j = 0; j < NB; ++j) {
+      const __m256i t = _mm256_sub_epi8(_mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(32 * j))), lo);
       const __m256i near = _mm256_cmpeq_epi8(_mm256_min_epu8(t, two), t);  // 0 <= d' - (d1 - 1) <= 2
-      m2 = _mm256_min_epu8(m2, _mm256_or_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(s + d)), near));
+      m2 = _mm256_min_epu8(m2, _mm256_or_si256(v[j], near));
     }
     // all-255 except the masked lanes would read 255 here; the scalar
     // secondBest then also sees 255 (a real cost), so both agree
@@ -145,11 +140,28 @@ void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_dispar
     decide(d1, s1, s2, opt, best[x], disparity[x], confidence[x]);
     if (opt.subpixel && best[x] > 0 && best[x] + 1 < D) refinePixel(paths, o, d1, disparity[x]);
   }
-  if (best_right)  // right pixels whose candidates ended at the row's last pixel
+  if (best_right) {  // right pixels whose candidates ended at the row's last pixel
+    alignas(32) uint8_t last[D];
+    for (int j = 0; j < NB; ++j) _mm256_store_si256(reinterpret_cast<__m256i*>(last + 32 * j), run_index[j]);
     for (int d = 0; d + 1 < D; ++d) {
       const int xr = cols - 1 - min_disparity - d;
-      if (xr >= 0 && xr < cols) best_right[xr] = run_index[d] == 255 ? -1 : run_index[d];
+      if (xr >= 0 && xr < cols) best_right[xr] = last[d] == 255 ? -1 : last[d];
     }
+  }
+}
+
+void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+                  WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
+                  int16_t* best_right) {
+  switch (D / 32) {
+    case 1: return fusedWinnersN<1>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    case 2: return fusedWinnersN<2>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    case 3: return fusedWinnersN<3>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    case 4: return fusedWinnersN<4>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    case 5: return fusedWinnersN<5>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    case 6: return fusedWinnersN<6>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+    default: return fusedWinnersN<7>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+  }
 }
 #endif
 
