@@ -256,6 +256,31 @@ TEST(stereoSgm, HalfSplitMatchesReferenceOnFewAndOddRows) {
             }
 }
 
+// A service keeps one matcher for every frame; a calibration change brings
+// another size. Every buffer (checkpoints, edge rows, segment and row
+// workspaces) must follow: the reused matcher gives what a fresh one gives.
+TEST(stereoSgm, OneMatcherReusedAcrossImageSizesEqualsFreshOnes) {
+  Params p = plainParams(32, 2);
+  p.threads = 2;
+  p.subpixel = true;
+  p.uniqueness_ratio = 10;
+  const auto reused = createOwnSgm(p, true, 3);
+  struct Size2 { int rows, cols; };
+  int compared = 0;
+  for (const Size2 s : {Size2{70, 96}, Size2{9, 96}, Size2{37, 60}, Size2{1, 40}, Size2{70, 128}, Size2{70, 96}}) {
+    const cv::Mat right = texture(s.rows, s.cols, 5 + s.rows % 3, 1.2);
+    const cv::Mat left = shifted(right, 7.0);
+    cv::Mat a, ca, b, cb;
+    reused->compute(left, right, a, ca);
+    createOwnSgm(p, true, 3)->compute(left, right, b, cb);
+    ASSERT_EQ(a.size(), left.size());
+    ASSERT_EQ(cv::countNonZero(a != b), 0) << s.rows << "x" << s.cols;
+    ASSERT_EQ(cv::countNonZero(ca != cb), 0) << s.rows << "x" << s.cols;
+    compared += cv::countNonZero(a > 0);
+  }
+  EXPECT_GT(compared, 5000) << "the matcher hardly found any disparity: the comparison proves little";
+}
+
 TEST(stereoSgm, PathStepSimdEqualsScalar) {
   if (!pathSimdAvailable()) GTEST_SKIP() << "built without AVX2";
   std::mt19937 rng(7);
