@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace nerv {
 
@@ -160,23 +161,32 @@ void encodeDisparity(const cv::Mat& disparity, const std::string& encoding, disp
   msg.height = disparity.rows;
   msg.scale = kDisparityScale;
   msg.encoding = encoding;
-  cv::Mat fixed(disparity.size(), CV_16U);
+  // u16le: the fixed point is written straight into the message (x86/ARM
+  // hosts are little-endian; uint16 memory order is the wire order); png16
+  // encodes it from a matrix.
+  cv::Mat fixed;
+  uint16_t* out = nullptr;
+  if (encoding == "png16") {
+    fixed.create(disparity.size(), CV_16U);
+  } else {
+    msg.data.resize(disparity.total() * 2);
+    out = reinterpret_cast<uint16_t*>(msg.data.data());
+  }
   for (int v = 0; v < disparity.rows; ++v) {
     const float* d = disparity.ptr<float>(v);
-    uint16_t* o = fixed.ptr<uint16_t>(v);
+    uint16_t* o = out ? out + static_cast<size_t>(v) * disparity.cols : fixed.ptr<uint16_t>(v);
+    // Round half up, 0 for invalid (<= 0.5 / scale), NaN and +-inf. Written
+    // without branches so that the compiler vectorises it (the matcher
+    // encodes every frame on the pipeline's critical path): NaN and -inf fail
+    // s > 0.5, +inf fails s <= FLT_MAX; the clamp keeps the conversion defined.
     for (int u = 0; u < disparity.cols; ++u) {
       const float s = d[u] * kDisparityScale;
-      o[u] = (s > 0.5f && std::isfinite(s)) ? static_cast<uint16_t>(std::min(s + 0.5f, 65535.f))
-                                            : 0;
+      const bool valid = s > 0.5f && s <= std::numeric_limits<float>::max();
+      const float r = std::min(valid ? s + 0.5f : 0.0f, 65535.f);
+      o[u] = static_cast<uint16_t>(static_cast<int>(r));
     }
   }
-  if (encoding == "png16") {
-    cv::imencode(".png", fixed, msg.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
-  } else {
-    msg.data.resize(fixed.total() * 2);
-    // x86/ARM hosts are little-endian; uint16 memory order is the wire order.
-    std::memcpy(msg.data.data(), fixed.data, msg.data.size());
-  }
+  if (!out) cv::imencode(".png", fixed, msg.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
   msg.size = static_cast<int32_t>(msg.data.size());
 }
 

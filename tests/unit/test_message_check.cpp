@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "message_check.hpp"
 #include "message_convert.hpp"
@@ -133,6 +137,31 @@ TEST(commonMessageConvert, ImagesRoundTripInEveryLosslessEncoding) {
   image_t broken = encodeImage(gray, "png");
   broken.data.resize(10);
   EXPECT_NE(decodeImage(broken, out), "");
+}
+
+// The wire's fixed point against the plain per-pixel formula it had before
+// it was written branch-free: round half up, 0 for <= 0.5 / scale, NaN, +-inf,
+// and 65535 for anything above the range.
+TEST(commonMessageConvert, DisparityFixedPointMatchesThePlainFormula) {
+  std::vector<float> values = {0.0f, -0.0f, -3.0f, NAN, -NAN, INFINITY, -INFINITY, 1e30f, -1e30f,
+                               255.99f, 256.0f, 300.0f, std::numeric_limits<float>::max(),
+                               std::numeric_limits<float>::denorm_min()};
+  for (int k = 0; k < 4096; ++k) values.push_back(static_cast<float>(k) / (2.0f * kDisparityScale));  // exact halves
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> any(-10.0f, 300.0f);
+  while (values.size() % 64 != 0 || values.size() < 20000) values.push_back(any(rng));
+  cv::Mat disp(static_cast<int>(values.size() / 64), 64, CV_32F, values.data());
+  disparity_t msg;
+  encodeDisparity(disp, "u16le", msg);
+  ASSERT_EQ(msg.data.size(), 2 * values.size());
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float s = values[i] * kDisparityScale;
+    const uint16_t expected =
+        (s > 0.5f && std::isfinite(s)) ? static_cast<uint16_t>(std::min(s + 0.5f, 65535.f)) : 0;
+    uint16_t got;
+    std::memcpy(&got, msg.data.data() + 2 * i, 2);
+    ASSERT_EQ(got, expected) << "value " << values[i];
+  }
 }
 
 TEST(commonMessageConvert, DisparityFixedPointRoundTrip) {
