@@ -8,45 +8,9 @@
 #include <vector>
 
 #include "median_fill.hpp"
+#include "stereo_reference_median_fill.hpp"
 
 using namespace nerv::stereo;
-
-namespace {
-
-// Per pixel: the 3x3 median (replicated border, invalid = 0 counted) replaces
-// a valid pixel; an invalid pixel inside the image takes it when at least 6 of
-// its 8 neighbours are valid, with the lowest of their confidences (>= 1e-3).
-void referenceMedianFill(const cv::Mat& d, const cv::Mat& c, cv::Mat& out_d, cv::Mat& out_c) {
-  out_d = d.clone();
-  out_c = c.clone();
-  auto at = [&](int y, int x) { return d.at<float>(std::clamp(y, 0, d.rows - 1), std::clamp(x, 0, d.cols - 1)); };
-  for (int y = 0; y < d.rows; ++y)
-    for (int x = 0; x < d.cols; ++x) {
-      std::vector<float> w;
-      int valid = 0;
-      float lowest = 1.0f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          w.push_back(at(y + dy, x + dx));
-          if ((dy || dx) && at(y + dy, x + dx) > 0) {
-            ++valid;
-            lowest = std::min(lowest, c.at<float>(std::clamp(y + dy, 0, d.rows - 1), std::clamp(x + dx, 0, d.cols - 1)));
-          }
-        }
-      std::nth_element(w.begin(), w.begin() + 4, w.end());
-      const float m = w[4];
-      if (!(m > 0)) continue;
-      const bool inner = y > 0 && x > 0 && y + 1 < d.rows && x + 1 < d.cols;
-      if (d.at<float>(y, x) > 0) {
-        out_d.at<float>(y, x) = m;
-      } else if (inner && valid >= 6) {
-        out_d.at<float>(y, x) = m;
-        out_c.at<float>(y, x) = std::max(lowest, 1e-3f);
-      }
-    }
-}
-
-}  // namespace
 
 TEST(stereoMedianFill, MatchesThePlainReferenceWholeAndInRowRanges) {
   std::mt19937 rng(5);

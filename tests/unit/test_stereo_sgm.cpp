@@ -14,6 +14,7 @@
 #include "path_aggregation.hpp"
 #include "winner_subpixel.hpp"
 #include "stereo_matcher.hpp"
+#include "stereo_reference_median_fill.hpp"
 
 using namespace nerv::stereo;
 
@@ -123,32 +124,6 @@ cv::Mat referenceSgm(const cv::Mat& left, const cv::Mat& right, const Params& p)
     for (int x = 0; x < W; ++x)
       if (y < top || y >= H - bottom || x < rw || x >= W - rw) disparity.at<float>(y, x) = 0.0f;
   return disparity;
-}
-
-// nerv_sgm's last step, per pixel: the 3x3 median (replicated border, invalid
-// pixels count as 0) replaces valid pixels; an invalid pixel takes it only when
-// at least 6 of its 8 neighbours (inside the image) are valid.
-cv::Mat referenceMedianFill(const cv::Mat& d) {
-  cv::Mat out = d.clone();
-  auto at = [&](int y, int x) {
-    return d.at<float>(std::clamp(y, 0, d.rows - 1), std::clamp(x, 0, d.cols - 1));
-  };
-  for (int y = 0; y < d.rows; ++y)
-    for (int x = 0; x < d.cols; ++x) {
-      std::vector<float> w;
-      int valid = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          w.push_back(at(y + dy, x + dx));
-          if ((dy || dx) && at(y + dy, x + dx) > 0) ++valid;
-        }
-      std::nth_element(w.begin(), w.begin() + 4, w.end());
-      const float m = w[4];
-      if (!(m > 0)) continue;
-      const bool inner = y > 0 && x > 0 && y + 1 < d.rows && x + 1 < d.cols;
-      if (d.at<float>(y, x) > 0 || (inner && valid >= 6)) out.at<float>(y, x) = m;
-    }
-  return out;
 }
 
 Params plainParams(int D, int min_disparity) {
