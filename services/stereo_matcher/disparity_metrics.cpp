@@ -50,6 +50,7 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
   interpolateBackground(filled);
   DisparityScore s;
   long long bad = 0, had_value = 0;
+  double inlier_sum = 0;
   for (int v = 0; v < gt.rows; ++v) {
     const float* g = gt.ptr<float>(v);
     const float* e = estimate.ptr<float>(v);
@@ -57,7 +58,14 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
     for (int u = 0; u < gt.cols; ++u) {
       if (!(g[u] > 0.0f)) continue;
       ++s.pixels;
-      if (e[u] > 0.0f) ++had_value;
+      if (e[u] > 0.0f) {
+        ++had_value;
+        const float err = std::fabs(e[u] - g[u]);
+        if (err <= 1.0f) {
+          inlier_sum += err;
+          ++s.inliers;
+        }
+      }
       // a map with no valid pixel at all stays 0 after interpolation: all wrong
       if (!(f[u] > 0.0f) || is_bad(std::fabs(f[u] - g[u]), g[u])) ++bad;
     }
@@ -66,6 +74,7 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
     s.error_rate = static_cast<double>(bad) / s.pixels;
     s.density = static_cast<double>(had_value) / s.pixels;
   }
+  if (s.inliers > 0) s.inlier_mean_error = inlier_sum / static_cast<double>(s.inliers);
   return s;
 }
 

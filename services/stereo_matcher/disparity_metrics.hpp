@@ -24,6 +24,10 @@ struct DisparityScore {
   double error_rate = 0;  // fraction of ground-truth pixels that are wrong (after interpolation)
   double density = 0;     // fraction of ground-truth pixels the estimate had a value for
   long long pixels = 0;   // ground-truth pixels scored
+  // Subpixel accuracy: mean |d - gt| over the estimate's own valid pixels within
+  // 1 px of the truth (before interpolation), and how many of them there were.
+  double inlier_mean_error = 0;
+  long long inliers = 0;
 };
 
 // estimate, ground_truth: CV_32F [px], ground truth <= 0 = unknown.

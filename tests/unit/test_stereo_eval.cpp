@@ -54,6 +54,18 @@ TEST(stereoEval, BadTwoPixelsForMiddlebury) {
   EXPECT_DOUBLE_EQ(s.density, 3.0 / 4.0);
 }
 
+TEST(stereoEval, SubpixelErrorOverTheEstimatesOwnInliers) {
+  const cv::Mat gt = row({10, 10, 10, 10, 10, 0});
+  //                estimate: +0.25, -0.5, +1.0 (still an inlier), +1.5 (outlier), invalid, no gt
+  const cv::Mat est = row({10.25, 9.5, 11, 11.5, 0, 12});
+  const DisparityScore s = scoreBad(est, gt, 2.0);
+  EXPECT_EQ(s.inliers, 3);  // the invalid pixel, filled by interpolation, is not one
+  EXPECT_NEAR(s.inlier_mean_error, (0.25 + 0.5 + 1.0) / 3.0, 1e-6);
+  const DisparityScore none = scoreD1(cv::Mat::zeros(1, 6, CV_32F), gt);
+  EXPECT_EQ(none.inliers, 0);
+  EXPECT_DOUBLE_EQ(none.inlier_mean_error, 0.0);
+}
+
 TEST(stereoEval, EmptyEstimateIsAllWrong) {
   const cv::Mat gt = row({5, 6, 7});
   const DisparityScore s = scoreD1(cv::Mat::zeros(1, 3, CV_32F), gt);

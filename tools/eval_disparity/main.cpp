@@ -10,7 +10,8 @@
 // against the frame its header.frame_id names. KITTI ground truth (16-bit) is
 // scored with D1 (|d - gt| > 3 px and > 5 %), Middlebury (8-bit) with bad-2.0;
 // both after the KITTI devkit's background interpolation, with the density of
-// the estimate. Exit 0 on success, 2 on bad arguments or unreadable input.
+// the estimate and "subpx", the mean |d - gt| over its valid pixels within 1 px
+// of the truth (subpixel accuracy). Exit 0 on success, 2 on bad arguments or unreadable input.
 #include <lcm/lcm-cpp.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -33,13 +34,16 @@ namespace {
 
 struct Totals {
   long long pixels = 0;
-  double bad = 0, valid = 0, ms = 0;
+  double bad = 0, valid = 0, ms = 0, inlier_error = 0;
+  long long inliers = 0;
   int frames = 0;
   std::string metric;
   void add(const DisparityScore& s, double frame_ms, const std::string& m) {
     pixels += s.pixels;
     bad += s.error_rate * s.pixels;
     valid += s.density * s.pixels;
+    inlier_error += s.inlier_mean_error * static_cast<double>(s.inliers);
+    inliers += s.inliers;
     ms += frame_ms;
     ++frames;
     metric = m;
@@ -55,8 +59,9 @@ void printRow(const std::string& label, const Totals& t) {
     std::printf("%-20s no frame scored\n", label.c_str());
     return;
   }
-  std::printf("%-20s %6d %-8s %8.2f%% %8.1f%% %9.1f\n", label.c_str(), t.frames, t.metric.c_str(),
-              100.0 * t.bad / t.pixels, 100.0 * t.valid / t.pixels, t.ms / t.frames);
+  std::printf("%-20s %6d %-8s %8.2f%% %8.1f%% %9.3f %9.1f\n", label.c_str(), t.frames,
+              t.metric.c_str(), 100.0 * t.bad / t.pixels, 100.0 * t.valid / t.pixels,
+              t.inliers ? t.inlier_error / static_cast<double>(t.inliers) : 0.0, t.ms / t.frames);
 }
 
 int usage(const char* why) {
@@ -97,8 +102,8 @@ int main(int argc, char** argv) {
     return usage(e.err.c_str());
   }
   auto metricName = [](const std::string& kind) { return kind == "kitti" ? "D1" : "bad-2.0"; };
-  std::printf("%-20s %6s %-8s %9s %9s %9s\n", "algorithm", "frames", "metric", "error",
-              "density", "ms/frame");
+  std::printf("%-20s %6s %-8s %9s %9s %9s %9s\n", "algorithm", "frames", "metric", "error",
+              "density", "subpx", "ms/frame");
 
   if (!log.empty()) {
     lcm::LogFile file(log, "r");
