@@ -20,6 +20,8 @@
 //     positives by where they lie (background, or which object: missed, found
 //     by another box, or ignored as too far / hidden);
 //   - hypotheses lying mostly (> 50 %) inside DIR/trap_mask and how many survive;
+//   - depth (z and nearest_z) of the kept true positives against their labels'
+//     nearest depth (tools/lib/distance_accuracy.hpp), per 10 m band;
 //   - ground-model and SNV pose against DIR/extrinsics.txt (or --extrinsics);
 //   - ms per frame of each stage.
 // --visible counts only labels with occlusion < 2 and truncation < 0.5 (others
@@ -47,6 +49,7 @@
 #include "config.hpp"
 #include "dataset.hpp"
 #include "detection_eval.hpp"
+#include "distance_accuracy.hpp"
 #include "kitti_labels.hpp"
 #include "message_convert.hpp"
 #include "snv_extrinsic.hpp"
@@ -275,45 +278,16 @@ EvalBox boxOf(const Hypothesis& h) { return detectionBox(h.box.x, h.box.y, h.box
 
 enum class Outcome { TP, FP, Ignored };
 
-// The matcher of tools/lib/detection_eval.cpp, per detection (the counts are
-// checked against evaluateFrame below). matched_label[i] = label index or -1.
-std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets_in, const std::vector<KittiLabel>& labels,
+// Per detection: the outcome, and matched_label[i] = label index or -1.
+std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets, const std::vector<KittiLabel>& labels,
                                 const EvalParams& p, std::vector<int>& matched_label) {
-  std::vector<int> counted, ignored, dontcare;
-  for (size_t i = 0; i < labels.size(); ++i) {
-    const auto& l = labels[i];
-    if (l.type == "DontCare") dontcare.push_back(int(i));
-    else if ((!p.classes.empty() && !p.classes.count(l.type)) || (l.z > 0 && l.z > p.max_distance_m))
-      ignored.push_back(int(i));
-    else
-      counted.push_back(int(i));
-  }
-  std::vector<size_t> order(dets_in.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return dets_in[a].score > dets_in[b].score; });
-  std::vector<Outcome> out(dets_in.size(), Outcome::FP);
-  matched_label.assign(dets_in.size(), -1);
-  std::vector<bool> used(counted.size(), false);
-  for (size_t k : order) {
-    const EvalBox& d = dets_in[k];
-    int best = -1;
-    float best_iou = p.min_iou;
-    for (size_t i = 0; i < counted.size(); ++i) {
-      const float o = iou(d, labelBox(labels[counted[i]]));
-      if (!used[i] && o > best_iou) best_iou = o, best = int(i);
-    }
-    if (best >= 0) {
-      used[best] = true;
-      out[k] = Outcome::TP;
-      matched_label[k] = counted[best];
-      continue;
-    }
-    bool neutral = false;
-    for (int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > p.min_iou;
-    for (int g : dontcare)
-      neutral = neutral || (area(d) > 0 && intersection(d, labelBox(labels[g])) / area(d) > p.dontcare_min_overlap);
-    out[k] = neutral ? Outcome::Ignored : Outcome::FP;
+  std::vector<Outcome> out;
+  matched_label.clear();
+  for (const DetectionMatch& m : matchDetections(dets, labels, p)) {
+    out.push_back(m.outcome == MatchOutcome::TruePositive    ? Outcome::TP
+                  : m.outcome == MatchOutcome::FalsePositive ? Outcome::FP
+                                                             : Outcome::Ignored);
+    matched_label.push_back(m.label);
   }
   return out;
 }
@@ -377,6 +351,8 @@ int main(int argc, char** argv) {
     EvalParams ep;
     ep.max_distance_m = o.max_distance_m;
     EvalCounts all, kept;
+    // kept true positives: the label's nearest depth vs the hypothesis' z and nearest_z
+    DistanceAccuracy distance_kept, nearest_kept;
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
     std::map<std::string, int> fp_removed, fp_kept, tp_lost, tp_kept, fp_where;
     std::map<std::string, int> verdicts;
@@ -477,9 +453,6 @@ int main(int argc, char** argv) {
       const EvalCounts c_all = evaluateFrame(hyps, labels, ep), c_kept = evaluateFrame(val, labels, ep);
       all.add(c_all);
       kept.add(c_kept);
-      if (std::count(out_all.begin(), out_all.end(), Outcome::FP) != c_all.fp ||
-          std::count(out_kept.begin(), out_kept.end(), Outcome::TP) != c_kept.tp)
-        throw std::logic_error("per-detection matcher disagrees with evaluateFrame");
 
       for (size_t i = 0; i < labels.size(); ++i) {
         const auto& l = labels[i];
@@ -488,7 +461,13 @@ int main(int argc, char** argv) {
       }
       std::vector<bool> kept_tp_label(labels.size(), false);
       for (size_t k = 0; k < val.size(); ++k)
-        if (out_kept[k] == Outcome::TP) ++cls_tp_kept[labels[ml_kept[k]].type], kept_tp_label[ml_kept[k]] = true;
+        if (out_kept[k] == Outcome::TP) {
+          ++cls_tp_kept[labels[ml_kept[k]].type], kept_tp_label[ml_kept[k]] = true;
+          if (labelDepthComparable(labels[ml_kept[k]])) {
+            distance_kept.add(labelNearestDepth(labels[ml_kept[k]]), st.hypotheses[val_index[k]].z_m);
+            nearest_kept.add(labelNearestDepth(labels[ml_kept[k]]), st.hypotheses[val_index[k]].nearest_z_m);
+          }
+        }
       for (size_t i = 0; i < hyps.size(); ++i) {
         if (out_all[i] == Outcome::TP) {
           ++cls_tp_all[labels[ml_all[i]].type];
@@ -665,6 +644,11 @@ int main(int argc, char** argv) {
       dump("true positives lost by SNV (verdict: reason):", tp_lost);
       dump("true positives kept by SNV (verdict):", tp_kept);
       dump("false positives by location (stixel only):", fp_where);
+      if (distance_kept.count())
+        std::printf("depth of kept true positives vs the label's nearest depth, by range: z (median stixel)\n%s"
+                    "nearest_z (90th percentile stixel)\n%s",
+                    formatDistanceBands(distance_kept.bands(defaultDistanceBands())).c_str(),
+                    formatDistanceBands(nearest_kept.bands(defaultDistanceBands())).c_str());
     }
     std::printf("verdicts:");
     for (const auto& [k, n] : verdicts) std::printf("  %s %d", k.c_str(), n);

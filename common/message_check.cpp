@@ -120,7 +120,7 @@ Problem checkStixels(const stixels_t& msg, const Limits& limits) {
   if (!finite({g.vd_slope, g.vd_intercept, g.horizon_row, g.pitch_deg, g.roll_deg, g.height_m}))
     return problem("bad_value", "stixels: ground model has non-finite numbers");
   for (const auto& r : msg.rois) {
-    if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.disparity}))
+    if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.nearest_z_m, r.disparity}))
       return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has non-finite numbers");
     // Boxes lie in the image: one outside every accepted image came from a
     // corrupt message (it would be kept as an unvalidated detection).

@@ -293,6 +293,7 @@ roi_t toMessage(const Hypothesis& h) {
   m.width_m = h.width_m;
   m.height_m = h.height_m;
   m.distance_m = h.distance_m;
+  m.nearest_z_m = h.nearest_z_m;
   m.disparity = h.disparity;
   m.num_stixels = h.num_stixels;
   return m;
@@ -308,6 +309,7 @@ Hypothesis fromMessage(const roi_t& m) {
   h.width_m = m.width_m;
   h.height_m = m.height_m;
   h.distance_m = m.distance_m;
+  h.nearest_z_m = m.nearest_z_m;
   h.disparity = m.disparity;
   h.num_stixels = m.num_stixels;
   return h;
@@ -402,6 +404,7 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v) {
   d.width_m = h.width_m;
   d.height_m = h.height_m;
   d.distance_m = h.distance_m;
+  d.nearest_z_m = h.nearest_z_m;
   d.label = v.label;
   d.score = v.score;
   d.kept = v.kept;

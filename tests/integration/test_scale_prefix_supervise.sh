@@ -36,8 +36,12 @@ for p in FRONT_ REAR_; do
   json "$log" >"$tmp/p.jsonl"
   n=$(grep -c "\"channel\":\"${p}DETECTIONS\"" "$tmp/p.jsonl" || true)
   [[ "$n" -eq 6 ]] || fail "$p: $n DETECTIONS, expected 6"
-  grep "\"channel\":\"${p}NERV_HEALTH\"" "$tmp/p.jsonl" | grep '"service":"validator"' | tail -n1 >"$tmp/h.json"
-  grep -q '"frames_in":6,' "$tmp/h.json" || fail "$p validator saw other frames: $(cat "$tmp/h.json")"
+  # Its own 6 frames are in the log (above); it never counted more. The highest
+  # count, not the last report: under load the report sent on exit can miss the
+  # log (seen once with ctest -j2: the last recorded report said 5).
+  grep "\"channel\":\"${p}NERV_HEALTH\"" "$tmp/p.jsonl" | grep '"service":"validator"' >"$tmp/h.json" || true
+  most=$(grep -o '"frames_in":[0-9]*' "$tmp/h.json" | cut -d: -f2 | sort -n | tail -n1)
+  [[ -n "$most" && "$most" -ge 1 && "$most" -le 6 ]] || fail "$p validator saw other frames (at most $most counted): $(tail -n1 "$tmp/h.json")"
 done
 pass "FRONT_ and REAR_ pipelines ran side by side, each saw only its own 6 frames"
 

@@ -82,3 +82,16 @@ TEST(toolsDetectionEval, FarAndUncountedObjectsAreIgnored) {
   EXPECT_EQ(c.fp, 0);
   EXPECT_EQ(c.ignored, 2);
 }
+
+TEST(toolsDetectionEval, MatchesNameTheLabelOfEachTruePositive) {
+  // detections: a hit on label 1, a box in empty space, one on a DontCare area
+  KittiLabel dc = label("DontCare", 200, 0, 240, 40);
+  const std::vector<KittiLabel> labels = {label("Car", 0, 0, 10, 10), label("Car", 100, 0, 110, 10), dc};
+  const auto m = matchDetections({{100, 0, 111, 11}, {50, 50, 60, 60}, {205, 5, 215, 15}}, labels, EvalParams{});
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m[0].outcome, MatchOutcome::TruePositive);
+  EXPECT_EQ(m[0].label, 1);
+  EXPECT_EQ(m[1].outcome, MatchOutcome::FalsePositive);
+  EXPECT_EQ(m[1].label, -1);
+  EXPECT_EQ(m[2].outcome, MatchOutcome::Ignored);
+}

@@ -115,6 +115,16 @@ TEST(commonMessageCheck, StixelsCountsAndNumbers) {
   s.rois.push_back(toMessage(h));
   s.num_rois = 1;
   EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_value");
+  // nearest_z_m is checked too, and carried through STIXELS into DETECTIONS.
+  h.z_m = 12.0f;
+  h.nearest_z_m = NAN;
+  s.rois[0] = toMessage(h);
+  EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_value");
+  h.nearest_z_m = 11.25f;
+  s.rois[0] = toMessage(h);
+  EXPECT_FALSE(checkStixels(s, Limits{}));
+  EXPECT_FLOAT_EQ(fromMessage(s.rois[0]).nearest_z_m, 11.25f);
+  EXPECT_FLOAT_EQ(toDetection(fromMessage(s.rois[0]), Verdict{}).nearest_z_m, 11.25f);
   surface_normals_t n;
   n.num_rois = 1;
   n.rois.push_back(toMessage(NormalStats{}));

@@ -63,6 +63,33 @@ TEST(stixelFreeSpace, OneBoxAtKnownDistance) {
   EXPECT_NEAR(h.height_m, 1.5, 0.2);
   EXPECT_NEAR(h.distance_m, std::sqrt(h.x_m * h.x_m + h.y_m * h.y_m + h.z_m * h.z_m), 1e-3);
   EXPECT_NEAR(h.box.y + h.box.h - 1, foot, 2.0);
+  // A face square to the camera: its nearest part is at its depth.
+  EXPECT_NEAR(h.nearest_z_m, h.z_m, 0.02 * h.z_m);
+  EXPECT_LE(h.nearest_z_m, h.z_m + 1e-4f);
+}
+
+TEST(stixelFreeSpace, NearestPartOfAVehicleWithItsSideInView) {
+  // A van's rear at 10 m (x 6.0..7.8 m, 130 px) and its left side receding from
+  // 10 to 16 m along x = 6 m (painted as 0.25 m deep slices, 162 px): z_m sits
+  // on the median stixel, on the side; nearest_z_m on the rear.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  cv::Mat disp = renderDisparity(scene, cam);
+  for (float z = 15.75f; z >= 10.0f; z -= 0.25f) {
+    // the slice of the side between depths z and z + 0.25 covers columns u(z + 0.25)..u(z)
+    const double u_near = cam.cx + cam.fx * 6.0 / z, u_far = cam.cx + cam.fx * 6.0 / (z + 0.25);
+    paintFace(disp, scene, cam, z, (u_far - cam.cx) * z / cam.fx, (u_near - cam.cx) * z / cam.fx, 0.0, 2.0);
+  }
+  paintFace(disp, scene, cam, 10.0f, 6.0, 7.8, 0.0, 2.0);
+  const StixelResult r = estimateStixels(disp, cam, Params{});
+  ASSERT_TRUE(r.ground.valid);
+  const Hypothesis* car = nullptr;
+  for (const Hypothesis& h : r.hypotheses)
+    if (!car || h.box.w > car->box.w) car = &h;
+  ASSERT_NE(car, nullptr);
+  EXPECT_NEAR(car->nearest_z_m, 10.0f, 0.2f);
+  EXPECT_GT(car->z_m, car->nearest_z_m + 0.2f) << "the median stixel lies on the side";
+  EXPECT_GE(car->num_stixels, 6);
 }
 
 TEST(stixelFreeSpace, ObstaclesBeyondMaxDistanceAndBelowMinHeightAreIgnored) {

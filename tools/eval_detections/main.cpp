@@ -6,7 +6,10 @@
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
 // --extrinsics FILE (lines "frame pitch_deg roll_deg height_m") adds the pose
-// error of EXTRINSICS against it.
+// error of EXTRINSICS against it. The depth of the kept true positives (z_m at
+// the median stixel, nearest_z_m at the nearest part) is compared with the
+// matched label's nearest depth per 10 m band, for labels neither truncated nor
+// occluded (tools/lib/distance_accuracy.hpp).
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
@@ -19,6 +22,7 @@
 #include <stdexcept>
 
 #include "detection_eval.hpp"
+#include "distance_accuracy.hpp"
 #include "json_writer.hpp"
 #include "log_decode.hpp"
 #include "nerv/detections_t.hpp"
@@ -111,6 +115,7 @@ int main(int argc, char** argv) {
     if (!o.extrinsics.empty()) poses = readExtrinsics(o.extrinsics);
 
     EvalCounts all, kept;
+    DistanceAccuracy depth_z, depth_nearest;  // kept true positives vs the label's nearest depth
     int frames = 0, unlabelled = 0;
     std::map<std::string, std::vector<double>> stage_ms;
     std::vector<double> pitch_err, roll_err, height_err;
@@ -132,13 +137,22 @@ int main(int argc, char** argv) {
         }
         const auto labels = readKittiLabels(label_path);
         std::vector<EvalBox> hyps, validated;
+        std::vector<const detection_t*> validated_det;
         for (const auto& d : det.detections) {
           const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
           hyps.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
-          if (d.kept) validated.push_back(b);
+          if (d.kept) validated.push_back(b), validated_det.push_back(&d);
         }
         all.add(evaluateFrame(hyps, labels, o.params));
         kept.add(evaluateFrame(validated, labels, o.params));
+        const auto matches = matchDetections(validated, labels, o.params);
+        for (size_t k = 0; k < matches.size(); ++k) {
+          if (matches[k].outcome != MatchOutcome::TruePositive || !labelDepthComparable(labels[matches[k].label]))
+            continue;
+          const float truth = labelNearestDepth(labels[matches[k].label]);
+          depth_z.add(truth, validated_det[k]->z_m);
+          depth_nearest.add(truth, validated_det[k]->nearest_z_m);
+        }
         ++frames;
       } else if (decodeEvent(*e, disp)) {
         stage_ms["stereo_matcher"].push_back(disp.processing_ms);
@@ -178,6 +192,23 @@ int main(int argc, char** argv) {
         j.field("f1", c.f1());
         j.endObject();
       }
+      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"depth_error_z", &depth_z},
+                                      {"depth_error_nearest_z", &depth_nearest}}) {
+        j.key(name);
+        j.beginArray();
+        for (const DistanceErrorBand& b : acc->bands(defaultDistanceBands())) {
+          j.beginObject();
+          j.field("from_m", b.from_m);
+          if (std::isfinite(b.to_m)) j.field("to_m", b.to_m);
+          j.field("count", b.count);
+          j.field("bias_m", b.bias_m);
+          j.field("median_abs_m", b.median_abs_m);
+          j.field("p95_abs_m", b.p95_abs_m);
+          j.field("median_rel", b.median_rel);
+          j.endObject();
+        }
+        j.endArray();
+      }
       j.key("stage_ms");
       j.beginObject();
       for (const auto& [s, v] : stage_ms) j.field(s, mean(v));
@@ -202,6 +233,11 @@ int main(int argc, char** argv) {
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
       std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,
                   c.precision(), c.recall(), c.f1());
+    if (depth_z.count())
+      std::printf("depth of kept true positives vs the label's nearest depth: z_m (median stixel)\n%s"
+                  "nearest_z_m (nearest part)\n%s",
+                  formatDistanceBands(depth_z.bands(defaultDistanceBands())).c_str(),
+                  formatDistanceBands(depth_nearest.bands(defaultDistanceBands())).c_str());
     std::printf("mean ms per frame:");
     for (const auto& [s, v] : stage_ms) std::printf(" %s %.2f", s.c_str(), mean(v));
     std::printf("\n");

@@ -23,47 +23,66 @@ float iou(const EvalBox& a, const EvalBox& b) {
   return uni > 0 ? inter / uni : 0.f;
 }
 
-EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
-                         const std::vector<KittiLabel>& labels, const EvalParams& params) {
-  std::vector<EvalBox> counted, ignored, dontcare;
-  for (const auto& l : labels) {
-    if (l.type == "DontCare") dontcare.push_back(labelBox(l));
+std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,
+                                            const std::vector<KittiLabel>& labels,
+                                            const EvalParams& params) {
+  std::vector<int> counted, ignored, dontcare;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const KittiLabel& l = labels[i];
+    if (l.type == "DontCare") dontcare.push_back(static_cast<int>(i));
     else if ((!params.classes.empty() && !params.classes.count(l.type)) ||
              (l.z > 0 && l.z > params.max_distance_m))
-      ignored.push_back(labelBox(l));
+      ignored.push_back(static_cast<int>(i));
     else
-      counted.push_back(labelBox(l));
+      counted.push_back(static_cast<int>(i));
   }
-  std::vector<EvalBox> dets = detections;
-  std::stable_sort(dets.begin(), dets.end(),
-                   [](const EvalBox& a, const EvalBox& b) { return a.score > b.score; });
-
-  EvalCounts c;
-  c.objects = static_cast<int>(counted.size());
-  std::vector<bool> matched(counted.size(), false);
-  for (const auto& d : dets) {
+  std::vector<size_t> order(detections.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return detections[a].score > detections[b].score; });
+  std::vector<DetectionMatch> out(detections.size());
+  std::vector<bool> used(counted.size(), false);
+  for (const size_t k : order) {
+    const EvalBox& d = detections[k];
     int best = -1;
     float best_iou = params.min_iou;
     for (size_t i = 0; i < counted.size(); ++i) {
-      const float o = iou(d, counted[i]);
-      if (!matched[i] && o > best_iou) {
+      const float o = iou(d, labelBox(labels[counted[i]]));
+      if (!used[i] && o > best_iou) {
         best_iou = o;
         best = static_cast<int>(i);
       }
     }
     if (best >= 0) {
-      matched[best] = true;
-      ++c.tp;
+      used[best] = true;
+      out[k] = {MatchOutcome::TruePositive, counted[best]};
       continue;
     }
     bool neutral = false;
-    for (const auto& g : ignored) neutral = neutral || iou(d, g) > params.min_iou;
-    for (const auto& g : dontcare)
-      neutral = neutral || (area(d) > 0 && intersection(d, g) / area(d) > params.dontcare_min_overlap);
-    if (neutral) ++c.ignored;
-    else ++c.fp;
+    for (const int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > params.min_iou;
+    for (const int g : dontcare) {
+      const EvalBox b = labelBox(labels[g]);
+      neutral = neutral || (area(d) > 0 && intersection(d, b) / area(d) > params.dontcare_min_overlap);
+    }
+    out[k].outcome = neutral ? MatchOutcome::Ignored : MatchOutcome::FalsePositive;
   }
-  for (bool m : matched) c.fn += m ? 0 : 1;
+  return out;
+}
+
+EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
+                         const std::vector<KittiLabel>& labels, const EvalParams& params) {
+  EvalCounts c;
+  std::vector<bool> matched(labels.size(), false);
+  for (const KittiLabel& l : labels)
+    if (l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
+        !(l.z > 0 && l.z > params.max_distance_m))
+      ++c.objects;
+  for (const DetectionMatch& m : matchDetections(detections, labels, params)) {
+    if (m.outcome == MatchOutcome::TruePositive) ++c.tp;
+    else if (m.outcome == MatchOutcome::FalsePositive) ++c.fp;
+    else ++c.ignored;
+  }
+  c.fn = c.objects - c.tp;
   return c;
 }
 

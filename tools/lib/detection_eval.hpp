@@ -53,6 +53,18 @@ float iou(const EvalBox& a, const EvalBox& b);
 EvalBox detectionBox(int x, int y, int w, int h, float score = 0);
 EvalBox labelBox(const KittiLabel& label);
 
+// What became of each detection of a frame: a true positive of label `label`
+// (an index into the labels), a false positive, or ignored (DontCare, or an
+// ignored object). Same order as the detections.
+enum class MatchOutcome { TruePositive, FalsePositive, Ignored };
+struct DetectionMatch {
+  MatchOutcome outcome = MatchOutcome::FalsePositive;
+  int label = -1;
+};
+std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,
+                                            const std::vector<KittiLabel>& labels,
+                                            const EvalParams& params);
+
 // One frame: detections (any order; matched by descending score) vs labels.
 EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
                          const std::vector<KittiLabel>& labels, const EvalParams& params);

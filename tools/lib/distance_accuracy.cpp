@@ -1,0 +1,82 @@
+#include "distance_accuracy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace nerv {
+
+float labelNearestDepth(const KittiLabel& l) {
+  if (!(l.z > 0) || !std::isfinite(l.z)) return 0;
+  if (!(l.l > 0 && l.w > 0) || l.x < -999) return l.z;
+  const float c = std::cos(l.rotation_y), s = std::sin(l.rotation_y);
+  float nearest = l.z;
+  for (const float dx : {-0.5f * l.l, 0.5f * l.l})
+    for (const float dz : {-0.5f * l.w, 0.5f * l.w}) nearest = std::min(nearest, l.z - s * dx + c * dz);
+  return nearest;
+}
+
+bool labelDepthComparable(const KittiLabel& l) {
+  return l.truncated <= 0 && l.occluded == 0 && labelNearestDepth(l) > 0;
+}
+
+void DistanceAccuracy::add(float truth_m, float estimate_m) {
+  if (!(truth_m > 0) || !(estimate_m > 0) || !std::isfinite(truth_m) || !std::isfinite(estimate_m)) return;
+  truth_.push_back(truth_m);
+  estimate_.push_back(estimate_m);
+}
+
+namespace {
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
+}
+}  // namespace
+
+std::vector<DistanceErrorBand> DistanceAccuracy::bands(const std::vector<float>& edges) const {
+  std::vector<DistanceErrorBand> out;
+  for (size_t b = 0; b < edges.size(); ++b) {
+    DistanceErrorBand band;
+    band.from_m = edges[b];
+    band.to_m = b + 1 < edges.size() ? edges[b + 1] : INFINITY;
+    std::vector<double> abs_err, rel_err;
+    double sum = 0;
+    for (size_t i = 0; i < truth_.size(); ++i) {
+      if (truth_[i] < band.from_m || truth_[i] >= band.to_m) continue;
+      const double e = static_cast<double>(estimate_[i]) - truth_[i];
+      sum += e;
+      abs_err.push_back(std::fabs(e));
+      rel_err.push_back(std::fabs(e) / truth_[i]);
+    }
+    if (abs_err.empty()) continue;
+    band.count = static_cast<int>(abs_err.size());
+    band.bias_m = sum / band.count;
+    band.median_abs_m = quantile(abs_err, 0.5);
+    band.p95_abs_m = quantile(abs_err, 0.95);
+    band.median_rel = quantile(rel_err, 0.5);
+    out.push_back(band);
+  }
+  return out;
+}
+
+const std::vector<float>& defaultDistanceBands() {
+  static const std::vector<float> edges = {0, 10, 20, 30, 40};
+  return edges;
+}
+
+std::string formatDistanceBands(const std::vector<DistanceErrorBand>& bands) {
+  std::string out;
+  char line[160];
+  for (const DistanceErrorBand& b : bands) {
+    char range[32];
+    if (std::isfinite(b.to_m)) std::snprintf(range, sizeof range, "%2.0f-%2.0f m", b.from_m, b.to_m);
+    else std::snprintf(range, sizeof range, "%2.0f+ m  ", b.from_m);
+    std::snprintf(line, sizeof line,
+                  "  %s  n %4d  bias %+6.2f m  median |err| %5.2f m  p95 %5.2f m  median %4.1f %%\n", range,
+                  b.count, b.bias_m, b.median_abs_m, b.p95_abs_m, 100.0 * b.median_rel);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace nerv
