@@ -65,6 +65,8 @@ pass "missing, noise and cut logs end with one line, no crash"
 html="$out/report/report.html"
 [[ -s "$html" ]] || fail "no report.html"
 grep -q 'stixel + SNV (kept)' "$html" || fail "no precision/recall table in the report"
+grep -q 'Distance of the kept detections' "$html" && grep -q '<td>nearest_z_m</td>' "$html" \
+  || fail "no distance table in the report (6 urban frames have fully visible cars)"
 if grep -Eq '<(script|link)[ >]|src="http|url\(http' "$html"; then fail "the report refers to something outside itself"; fi
 pass "report written: $(cat "$out/report.txt")"
 

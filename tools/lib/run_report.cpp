@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "distance_accuracy.hpp"
 #include "frame_grid.hpp"
 #include "frame_render.hpp"
 #include "html_report.hpp"
@@ -136,6 +137,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
   // Pass 1: every frame without pixels.
   std::vector<Row> rows;
   int label_problems = 0;
+  DistanceAccuracy depth_z, depth_nearest;  // kept true positives vs the labels' nearest depth
   {
     LogFrameOptions read;
     read.keep_images = false;
@@ -191,6 +193,15 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
             }
             r.eval_all = evaluateFrame(all, labels, options.eval);
             r.eval_kept = evaluateFrame(kept, labels, options.eval);
+            std::vector<const detection_t*> kept_det;
+            for (const auto& d : f.detections->detections)
+              if (d.kept) kept_det.push_back(&d);
+            const auto matches = matchDetections(kept, labels, options.eval);
+            for (size_t k = 0; k < matches.size(); ++k)
+              if (matches[k].outcome == MatchOutcome::TruePositive && labelDepthComparable(labels[matches[k].label])) {
+                depth_z.add(labelNearestDepth(labels[matches[k].label]), kept_det[k]->z_m);
+                depth_nearest.add(labelNearestDepth(labels[matches[k].label]), kept_det[k]->nearest_z_m);
+              }
             r.objects = r.eval_all.objects;
             r.labelled = true;
           } catch (const std::exception&) {
@@ -463,6 +474,23 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
     page.table({"method", "objects", "TP", "FP", "FN", "precision", "recall", "F1"},
                {line("stixel only (all hypotheses)", all), line("stixel + SNV (kept)", kept)});
     if (label_problems) page.paragraph(std::to_string(label_problems) + " label files could not be read and were left out.");
+    if (depth_z.count()) {
+      page.heading("Distance of the kept detections");
+      page.paragraph("Depth of each kept true positive against its label's nearest depth (the nearest corner of the "
+                     "labelled 3D box, or the labelled depth when the label has no size), for objects neither "
+                     "truncated nor occluded (tools/lib/distance_accuracy): z_m is the depth of the median stixel, "
+                     "nearest_z_m of the object's nearest part.");
+      std::vector<std::vector<std::string>> rows_d;
+      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"z_m", &depth_z},
+                                      {"nearest_z_m", &depth_nearest}})
+        for (const DistanceErrorBand& b : acc->bands(defaultDistanceBands()))
+          rows_d.push_back({name,
+                            std::isfinite(b.to_m) ? cv::format("%.0f-%.0f m", b.from_m, b.to_m) : cv::format("%.0f m and more", b.from_m),
+                            std::to_string(b.count), fmt("%+.2f", b.bias_m), fmt("%.2f", b.median_abs_m),
+                            fmt("%.2f", b.p95_abs_m), fmt("%.1f %%", 100.0 * b.median_rel)});
+      page.table({"depth", "range", "boxes", "bias [m]", "median |error| [m]", "p95 |error| [m]", "median |error|"},
+                 rows_d);
+    }
     page.heading("Frames with the most errors");
     if (worst.empty()) page.paragraph("No labelled frame with a false positive or a miss.");
     for (const Row* r : worst) {
