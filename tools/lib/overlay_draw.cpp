@@ -80,7 +80,10 @@ void drawDetections(cv::Mat& img, const detections_t& detections) {
       cv::rectangle(img, p1, p2, color, d.kept ? 2 : 1);
       char text[96];
       if (d.kept)
-        std::snprintf(text, sizeof text, "%.1f m %s", d.distance_m, d.label.c_str());
+        // The depth of the nearest part (what the car keeps its distance from);
+        // logs from before that field show the distance of the base centre.
+        std::snprintf(text, sizeof text, "%.1f m %s", d.nearest_z_m > 0 ? d.nearest_z_m : d.distance_m,
+                      d.label.c_str());
       else
         std::snprintf(text, sizeof text, "%s", removalCode(d).c_str());
       // Kept labels above the box, removal codes inside its bottom edge.
