@@ -276,25 +276,11 @@ std::map<long, TruePose> readExtrinsics(const std::string& path) {
 
 EvalBox boxOf(const Hypothesis& h) { return detectionBox(h.box.x, h.box.y, h.box.w, h.box.h); }
 
-enum class Outcome { TP, FP, Ignored };
-
-// Per detection: the outcome, and matched_label[i] = label index or -1.
-std::vector<Outcome> matchFrame(const std::vector<EvalBox>& dets, const std::vector<KittiLabel>& labels,
-                                const EvalParams& p, std::vector<int>& matched_label) {
-  std::vector<Outcome> out;
-  matched_label.clear();
-  for (const DetectionMatch& m : matchDetections(dets, labels, p)) {
-    out.push_back(m.outcome == MatchOutcome::TruePositive    ? Outcome::TP
-                  : m.outcome == MatchOutcome::FalsePositive ? Outcome::FP
-                                                             : Outcome::Ignored);
-    matched_label.push_back(m.label);
-  }
-  return out;
-}
-
 // Per-frame listing: true positive, false positive, or ignored (DontCare,
 // an invisible or too far label).
-const char* outcomeTag(Outcome o) { return o == Outcome::TP ? "tp  " : o == Outcome::FP ? "fp  " : "ign "; }
+const char* outcomeTag(const DetectionMatch& m) {
+  return m.outcome == MatchOutcome::TruePositive ? "tp  " : m.outcome == MatchOutcome::FalsePositive ? "fp  " : "ign ";
+}
 
 // "error: height 0.12 m below 0.20 m" -> "error: height below"; numbers dropped.
 std::string reasonKind(const Verdict& v) {
@@ -351,8 +337,7 @@ int main(int argc, char** argv) {
     EvalParams ep;
     ep.max_distance_m = o.max_distance_m;
     EvalCounts all, kept;
-    // kept true positives: the label's nearest depth vs the hypothesis' z and nearest_z
-    DistanceAccuracy distance_kept, nearest_kept;
+    DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
     std::map<std::string, int> fp_removed, fp_kept, tp_lost, tp_kept, fp_where;
     std::map<std::string, int> verdicts;
@@ -447,10 +432,9 @@ int main(int argc, char** argv) {
           val_index.push_back(i);
         }
       }
-      std::vector<int> ml_all, ml_kept;
-      const auto out_all = matchFrame(hyps, labels, ep, ml_all);
-      const auto out_kept = matchFrame(val, labels, ep, ml_kept);
-      const EvalCounts c_all = evaluateFrame(hyps, labels, ep), c_kept = evaluateFrame(val, labels, ep);
+      const auto out_all = matchDetections(hyps, labels, ep);
+      const auto out_kept = matchDetections(val, labels, ep);
+      const EvalCounts c_all = countMatches(out_all, labels, ep), c_kept = countMatches(out_kept, labels, ep);
       all.add(c_all);
       kept.add(c_kept);
 
@@ -461,18 +445,17 @@ int main(int argc, char** argv) {
       }
       std::vector<bool> kept_tp_label(labels.size(), false);
       for (size_t k = 0; k < val.size(); ++k)
-        if (out_kept[k] == Outcome::TP) {
-          ++cls_tp_kept[labels[ml_kept[k]].type], kept_tp_label[ml_kept[k]] = true;
-          if (labelDepthComparable(labels[ml_kept[k]])) {
-            distance_kept.add(labelNearestDepth(labels[ml_kept[k]]), st.hypotheses[val_index[k]].z_m);
-            nearest_kept.add(labelNearestDepth(labels[ml_kept[k]]), st.hypotheses[val_index[k]].nearest_z_m);
-          }
+        if (out_kept[k].outcome == MatchOutcome::TruePositive) {
+          const int li = out_kept[k].label;
+          ++cls_tp_kept[labels[li].type], kept_tp_label[li] = true;
+          const Hypothesis& h = st.hypotheses[val_index[k]];
+          depth_kept.add(labels[li], h.z_m, h.nearest_z_m);
         }
       for (size_t i = 0; i < hyps.size(); ++i) {
-        if (out_all[i] == Outcome::TP) {
-          ++cls_tp_all[labels[ml_all[i]].type];
+        if (out_all[i].outcome == MatchOutcome::TruePositive) {
+          ++cls_tp_all[labels[out_all[i].label].type];
           ++(vs[i].kept ? tp_kept : tp_lost)[reasonKind(vs[i])];
-        } else if (out_all[i] == Outcome::FP) {
+        } else if (out_all[i].outcome == MatchOutcome::FalsePositive) {
           (vs[i].kept ? fp_kept : fp_removed)[reasonKind(vs[i])]++;
           // Where the false positive lies: on a labelled object (split, merge,
           // loose box) or on background / a trap.
@@ -493,7 +476,8 @@ int main(int argc, char** argv) {
           // ignores (beyond the distance, hidden, another class).
           if (!in_trap[i] && (best > 0.2f || cover > 0.5f) && best_label >= 0) {
             const KittiLabel& l = labels[best_label];
-            const bool found = std::find(ml_all.begin(), ml_all.end(), best_label) != ml_all.end();
+            const bool found = std::any_of(out_all.begin(), out_all.end(),
+                                           [&](const DetectionMatch& m) { return m.label == best_label; });
             where += l.z >= 1e8f ? " (hidden object, ignored)"
                      : l.z > ep.max_distance_m ? " (object beyond the distance, ignored)"
                      : !ep.classes.empty() && !ep.classes.count(l.type) ? " (other class, ignored)"
@@ -543,7 +527,7 @@ int main(int argc, char** argv) {
         // Misses: each counted label no hypothesis matched, with the closest box.
         std::vector<bool> hit(labels.size(), false);
         for (size_t i = 0; i < hyps.size(); ++i)
-          if (out_all[i] == Outcome::TP) hit[ml_all[i]] = true;
+          if (out_all[i].outcome == MatchOutcome::TruePositive) hit[out_all[i].label] = true;
         for (size_t i = 0; i < labels.size(); ++i) {
           const auto& l = labels[i];
           if (hit[i] || l.type == "DontCare" || (l.z > 0 && l.z > ep.max_distance_m)) continue;
@@ -566,7 +550,7 @@ int main(int argc, char** argv) {
                       st.hypotheses[k].width_m, ns.num_normals, ns.density, ns.ground_fraction, ns.object_fraction,
                       ns.error_fraction, ns.pitch_deg, ns.tilt_from_ground_deg, vs[k].label.c_str(),
                       vs[k].kept ? "" : (" (removed: " + vs[k].reason + ")").c_str());
-          if (out_all[k] == Outcome::FP) {  // a badly fitting box on an object, or nothing there
+          if (out_all[k].outcome == MatchOutcome::FalsePositive) {  // a badly fitting box on an object, or nothing there
             int bl = -1;
             float bli = 0;
             for (size_t i = 0; i < labels.size(); ++i)
@@ -595,8 +579,8 @@ int main(int argc, char** argv) {
         }
         for (size_t i = 0; i < hyps.size(); ++i) {
           const Box& b = st.hypotheses[i].box;
-          const cv::Scalar col = out_all[i] == Outcome::TP ? cv::Scalar(0, 255, 0)
-                                 : out_all[i] == Outcome::FP ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 255, 255);
+          const cv::Scalar col = out_all[i].outcome == MatchOutcome::TruePositive ? cv::Scalar(0, 255, 0)
+                                 : out_all[i].outcome == MatchOutcome::FalsePositive ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 255, 255);
           cv::rectangle(img, cv::Rect(b.x, b.y, b.w, b.h), col, vs[i].kept ? 2 : 1);
           cv::putText(img, std::to_string(i) + (vs[i].kept ? "" : "x") + vs[i].label.substr(0, 1),
                       cv::Point(b.x, b.y - 2), cv::FONT_HERSHEY_PLAIN, 0.8, col, 1);
@@ -644,11 +628,7 @@ int main(int argc, char** argv) {
       dump("true positives lost by SNV (verdict: reason):", tp_lost);
       dump("true positives kept by SNV (verdict):", tp_kept);
       dump("false positives by location (stixel only):", fp_where);
-      if (distance_kept.count())
-        std::printf("depth of kept true positives vs the label's nearest depth, by range: z (median stixel)\n%s"
-                    "nearest_z (90th percentile stixel)\n%s",
-                    formatDistanceBands(distance_kept.bands(defaultDistanceBands())).c_str(),
-                    formatDistanceBands(nearest_kept.bands(defaultDistanceBands())).c_str());
+      if (depth_kept.count()) std::printf("%s", depth_kept.format().c_str());
     }
     std::printf("verdicts:");
     for (const auto& [k, n] : verdicts) std::printf("  %s %d", k.c_str(), n);

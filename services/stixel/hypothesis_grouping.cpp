@@ -560,7 +560,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     }
     // Nearest part (what a planner keeps its distance from): the 90th
     // percentile of the stixels' disparities, the largest for groups of up to
-    // five; the median below stays the box's representative depth. On the
+    // six; the median below stays the box's representative depth. On the
     // synthetic sets it halves the error against the labels' nearest corner
     // (docs/detection_quality.md "Distance of the detections").
     std::sort(disp.begin(), disp.end());

@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
     if (!o.extrinsics.empty()) poses = readExtrinsics(o.extrinsics);
 
     EvalCounts all, kept;
-    DistanceAccuracy depth_z, depth_nearest;  // kept true positives vs the label's nearest depth
+    DepthErrors depth;  // kept true positives vs the label's nearest depth
     int frames = 0, unlabelled = 0;
     std::map<std::string, std::vector<double>> stage_ms;
     std::vector<double> pitch_err, roll_err, height_err;
@@ -144,15 +144,11 @@ int main(int argc, char** argv) {
           if (d.kept) validated.push_back(b), validated_det.push_back(&d);
         }
         all.add(evaluateFrame(hyps, labels, o.params));
-        kept.add(evaluateFrame(validated, labels, o.params));
         const auto matches = matchDetections(validated, labels, o.params);
-        for (size_t k = 0; k < matches.size(); ++k) {
-          if (matches[k].outcome != MatchOutcome::TruePositive || !labelDepthComparable(labels[matches[k].label]))
-            continue;
-          const float truth = labelNearestDepth(labels[matches[k].label]);
-          depth_z.add(truth, validated_det[k]->z_m);
-          depth_nearest.add(truth, validated_det[k]->nearest_z_m);
-        }
+        kept.add(countMatches(matches, labels, o.params));
+        for (size_t k = 0; k < matches.size(); ++k)
+          if (matches[k].outcome == MatchOutcome::TruePositive)
+            depth.add(labels[matches[k].label], validated_det[k]->z_m, validated_det[k]->nearest_z_m);
         ++frames;
       } else if (decodeEvent(*e, disp)) {
         stage_ms["stereo_matcher"].push_back(disp.processing_ms);
@@ -192,8 +188,8 @@ int main(int argc, char** argv) {
         j.field("f1", c.f1());
         j.endObject();
       }
-      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"depth_error_z", &depth_z},
-                                      {"depth_error_nearest_z", &depth_nearest}}) {
+      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"depth_error_z", &depth.z},
+                                      {"depth_error_nearest_z", &depth.nearest}}) {
         j.key(name);
         j.beginArray();
         for (const DistanceErrorBand& b : acc->bands(defaultDistanceBands())) {
@@ -233,11 +229,7 @@ int main(int argc, char** argv) {
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
       std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,
                   c.precision(), c.recall(), c.f1());
-    if (depth_z.count())
-      std::printf("depth of kept true positives vs the label's nearest depth: z_m (median stixel)\n%s"
-                  "nearest_z_m (nearest part)\n%s",
-                  formatDistanceBands(depth_z.bands(defaultDistanceBands())).c_str(),
-                  formatDistanceBands(depth_nearest.bands(defaultDistanceBands())).c_str());
+    if (depth.count()) std::printf("%s", depth.format().c_str());
     std::printf("mean ms per frame:");
     for (const auto& [s, v] : stage_ms) std::printf(" %s %.2f", s.c_str(), mean(v));
     std::printf("\n");

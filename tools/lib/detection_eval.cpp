@@ -23,6 +23,14 @@ float iou(const EvalBox& a, const EvalBox& b) {
   return uni > 0 ? inter / uni : 0.f;
 }
 
+namespace {
+// A labelled object the count includes (not DontCare, its class counted, not too far).
+bool isCounted(const KittiLabel& l, const EvalParams& params) {
+  return l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
+         !(l.z > 0 && l.z > params.max_distance_m);
+}
+}  // namespace
+
 std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,
                                             const std::vector<KittiLabel>& labels,
                                             const EvalParams& params) {
@@ -30,11 +38,8 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
   for (size_t i = 0; i < labels.size(); ++i) {
     const KittiLabel& l = labels[i];
     if (l.type == "DontCare") dontcare.push_back(static_cast<int>(i));
-    else if ((!params.classes.empty() && !params.classes.count(l.type)) ||
-             (l.z > 0 && l.z > params.max_distance_m))
-      ignored.push_back(static_cast<int>(i));
-    else
-      counted.push_back(static_cast<int>(i));
+    else if (isCounted(l, params)) counted.push_back(static_cast<int>(i));
+    else ignored.push_back(static_cast<int>(i));
   }
   std::vector<size_t> order(detections.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -69,21 +74,22 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
   return out;
 }
 
-EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
-                         const std::vector<KittiLabel>& labels, const EvalParams& params) {
+EvalCounts countMatches(const std::vector<DetectionMatch>& matches, const std::vector<KittiLabel>& labels,
+                        const EvalParams& params) {
   EvalCounts c;
-  std::vector<bool> matched(labels.size(), false);
-  for (const KittiLabel& l : labels)
-    if (l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
-        !(l.z > 0 && l.z > params.max_distance_m))
-      ++c.objects;
-  for (const DetectionMatch& m : matchDetections(detections, labels, params)) {
+  for (const KittiLabel& l : labels) c.objects += isCounted(l, params) ? 1 : 0;
+  for (const DetectionMatch& m : matches) {
     if (m.outcome == MatchOutcome::TruePositive) ++c.tp;
     else if (m.outcome == MatchOutcome::FalsePositive) ++c.fp;
     else ++c.ignored;
   }
   c.fn = c.objects - c.tp;
   return c;
+}
+
+EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
+                         const std::vector<KittiLabel>& labels, const EvalParams& params) {
+  return countMatches(matchDetections(detections, labels, params), labels, params);
 }
 
 }  // namespace nerv

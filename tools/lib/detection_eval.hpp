@@ -65,6 +65,10 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
                                             const std::vector<KittiLabel>& labels,
                                             const EvalParams& params);
 
+// The counts of one frame's matches (matchDetections of the same labels and params).
+EvalCounts countMatches(const std::vector<DetectionMatch>& matches, const std::vector<KittiLabel>& labels,
+                        const EvalParams& params);
+
 // One frame: detections (any order; matched by descending score) vs labels.
 EvalCounts evaluateFrame(const std::vector<EvalBox>& detections,
                          const std::vector<KittiLabel>& labels, const EvalParams& params);

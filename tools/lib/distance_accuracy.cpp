@@ -64,6 +64,19 @@ const std::vector<float>& defaultDistanceBands() {
   return edges;
 }
 
+void DepthErrors::add(const KittiLabel& label, float z_m, float nearest_z_m) {
+  if (!labelDepthComparable(label)) return;
+  const float truth = labelNearestDepth(label);
+  z.add(truth, z_m);
+  nearest.add(truth, nearest_z_m);
+}
+
+std::string DepthErrors::format() const {
+  return "depth of kept true positives vs the label's nearest depth: z_m (median stixel)\n" +
+         formatDistanceBands(z.bands(defaultDistanceBands())) + "nearest_z_m (nearest part)\n" +
+         formatDistanceBands(nearest.bands(defaultDistanceBands()));
+}
+
 std::string formatDistanceBands(const std::vector<DistanceErrorBand>& bands) {
   std::string out;
   char line[160];

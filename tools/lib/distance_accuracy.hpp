@@ -51,6 +51,17 @@ class DistanceAccuracy {
 // The default bands: 0-10, 10-20, 20-30, 30-40 m and beyond.
 const std::vector<float>& defaultDistanceBands();
 
+// Both depths of the kept true positives: z_m (median stixel) and nearest_z_m
+// (nearest part), against the label's nearest depth; labels that are not
+// labelDepthComparable are left out.
+struct DepthErrors {
+  DistanceAccuracy z, nearest;
+  void add(const KittiLabel& label, float z_m, float nearest_z_m);
+  int count() const { return z.count(); }
+  // Both tables over the default bands, each under a heading line.
+  std::string format() const;
+};
+
 // "  0-10 m  n 12  bias +0.05 m  median |err| 0.08 m  p95 0.21 m  median 1.1 %" per band.
 std::string formatDistanceBands(const std::vector<DistanceErrorBand>& bands);
 

@@ -137,7 +137,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
   // Pass 1: every frame without pixels.
   std::vector<Row> rows;
   int label_problems = 0;
-  DistanceAccuracy depth_z, depth_nearest;  // kept true positives vs the labels' nearest depth
+  DepthErrors depth;  // kept true positives vs the labels' nearest depth
   {
     LogFrameOptions read;
     read.keep_images = false;
@@ -186,22 +186,18 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
           try {
             const auto labels = readKittiLabels(path);
             std::vector<EvalBox> all, kept;
+            std::vector<const detection_t*> kept_det;
             for (const auto& d : f.detections->detections) {
               const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
               all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
-              if (d.kept) kept.push_back(b);
+              if (d.kept) kept.push_back(b), kept_det.push_back(&d);
             }
             r.eval_all = evaluateFrame(all, labels, options.eval);
-            r.eval_kept = evaluateFrame(kept, labels, options.eval);
-            std::vector<const detection_t*> kept_det;
-            for (const auto& d : f.detections->detections)
-              if (d.kept) kept_det.push_back(&d);
             const auto matches = matchDetections(kept, labels, options.eval);
+            r.eval_kept = countMatches(matches, labels, options.eval);
             for (size_t k = 0; k < matches.size(); ++k)
-              if (matches[k].outcome == MatchOutcome::TruePositive && labelDepthComparable(labels[matches[k].label])) {
-                depth_z.add(labelNearestDepth(labels[matches[k].label]), kept_det[k]->z_m);
-                depth_nearest.add(labelNearestDepth(labels[matches[k].label]), kept_det[k]->nearest_z_m);
-              }
+              if (matches[k].outcome == MatchOutcome::TruePositive)
+                depth.add(labels[matches[k].label], kept_det[k]->z_m, kept_det[k]->nearest_z_m);
             r.objects = r.eval_all.objects;
             r.labelled = true;
           } catch (const std::exception&) {
@@ -474,15 +470,15 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
     page.table({"method", "objects", "TP", "FP", "FN", "precision", "recall", "F1"},
                {line("stixel only (all hypotheses)", all), line("stixel + SNV (kept)", kept)});
     if (label_problems) page.paragraph(std::to_string(label_problems) + " label files could not be read and were left out.");
-    if (depth_z.count()) {
+    if (depth.count()) {
       page.heading("Distance of the kept detections");
       page.paragraph("Depth of each kept true positive against its label's nearest depth (the nearest corner of the "
                      "labelled 3D box, or the labelled depth when the label has no size), for objects neither "
                      "truncated nor occluded (tools/lib/distance_accuracy): z_m is the depth of the median stixel, "
                      "nearest_z_m of the object's nearest part.");
       std::vector<std::vector<std::string>> rows_d;
-      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"z_m", &depth_z},
-                                      {"nearest_z_m", &depth_nearest}})
+      for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"z_m", &depth.z},
+                                      {"nearest_z_m", &depth.nearest}})
         for (const DistanceErrorBand& b : acc->bands(defaultDistanceBands()))
           rows_d.push_back({name,
                             std::isfinite(b.to_m) ? cv::format("%.0f-%.0f m", b.from_m, b.to_m) : cv::format("%.0f m and more", b.from_m),
