@@ -602,6 +602,9 @@ int main(int argc, char** argv) {
 
     std::printf("data %s: %d frames, %d hypotheses, %d frames without ground\n", o.data.c_str(), frames_done,
                 num_hyps, frames_no_ground);
+    // An oracle's table must not pass for the matcher's.
+    if (o.oracle == "truth") std::printf("disparity: the rendered disparity (--true-disparity), not the matcher's\n");
+    else if (!o.oracle.empty()) std::printf("disparity: the matcher's with the oracle '%s' applied\n", o.oracle.c_str());
     if (!o.labels.empty()) {
       std::printf("IoU > %.2f%s%s\n", ep.min_iou,
                   o.max_distance_m < 1e8 ? (", labels within " + std::to_string(int(o.max_distance_m)) + " m").c_str() : "",

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# tools/nerv eval synthetic: renders the named synthetic sets once, scores each
+# with bench_detection and prints one row per set.
+#  - the held-out sets at 2 frames: four rows, each the figures bench_detection
+#    itself prints for that folder;
+#  - a second run renders nothing (the sets are cached by generator + preset);
+#  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
+#  - bad options end with one line naming them and exit 2.
+# No LCM bus is involved (bench_detection runs the stages in-process).
+source "$(dirname "$0")/lib.sh"
+
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+nerv() { NERV_BUILD="$NERV_BUILD" "$NERV_ROOT/tools/nerv" "$@"; }
+
+nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" >"$out/first.txt" 2>"$out/first.err" \
+  || fail "eval synthetic exited with $?: $(tail -n 3 "$out/first.err")"
+rows=$(grep -cE '^[a-z_0-9]+ +2 +[0-9.]+/[0-9.]+/[0-9.]+ +[0-9.]+/[0-9.]+/[0-9.]+ +[0-9]+ of [0-9]+$' "$out/first.txt" || true)
+[[ "$rows" == 4 ]] || fail "expected 4 rows of figures, got $rows: $(cat "$out/first.txt")"
+for name in urban_13 urban_14 wet_road_9 highway_31; do
+  grep -q "^$name " "$out/first.txt" || fail "no row for $name"
+done
+[[ $(grep -c "rendering" "$out/first.err") == 4 ]] || fail "the first run should render four sets: $(cat "$out/first.err")"
+pass "four held-out sets rendered and scored"
+
+# The row is what bench_detection prints for that folder.
+"$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --visible --cache "$out/cache" \
+  >"$out/bench.txt" 2>&1 || fail "bench_detection exited with $?"
+want=$(awk '/^stixel \+ SNV/ {printf "%.3f/%.3f/%.3f", $(NF-2), $(NF-1), $NF}' "$out/bench.txt")
+got=$(awk '$1 == "urban_14" {print $4}' "$out/first.txt")
+[[ -n "$want" && "$got" == "$want" ]] || fail "urban_14 row says $got, bench_detection says $want"
+pass "urban_14's row matches bench_detection ($got)"
+
+nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" >"$out/second.txt" 2>"$out/second.err" \
+  || fail "second run exited with $?"
+! grep -q rendering "$out/second.err" || fail "the second run rendered again: $(cat "$out/second.err")"
+cmp -s "$out/first.txt" "$out/second.txt" || fail "the second run printed other figures"
+pass "second run reuses the rendered sets and prints the same figures"
+
+nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" --true-disparity >"$out/true.txt" 2>&1 \
+  || fail "--true-disparity exited with $?"
+grep -q "rendered disparity" "$out/sets/urban_13.txt" || fail "--true-disparity did not reach bench_detection"
+grep -q "^disparity: the rendered disparity" "$out/true.txt" || fail "the oracle's table does not say it is one"
+pass "--true-disparity reaches bench_detection"
+
+expect_error() {  # expect_error PATTERN ARGS...
+  local pattern=$1 rc=0
+  shift
+  nerv eval synthetic "$@" --out "$out/sets" >"$out/bad.txt" 2>&1 || rc=$?
+  [[ $rc == 2 ]] || fail "eval synthetic $* exited with $rc, expected 2"
+  [[ $(wc -l <"$out/bad.txt") == 1 ]] && grep -q "$pattern" "$out/bad.txt" \
+    || fail "eval synthetic $*: expected one line naming '$pattern', got: $(cat "$out/bad.txt")"
+}
+expect_error "'bogus'" --sets bogus
+expect_error "'0'" --frames 0
+expect_error "'--frobnicate'" --frobnicate
+pass "bad options end with one line and exit 2"
