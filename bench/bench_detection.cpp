@@ -52,6 +52,7 @@
 #include "distance_accuracy.hpp"
 #include "kitti_labels.hpp"
 #include "message_convert.hpp"
+#include "miss_causes.hpp"
 #include "snv_extrinsic.hpp"
 #include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
@@ -340,6 +341,7 @@ int main(int argc, char** argv) {
     DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
     std::map<std::string, int> fp_removed, fp_kept, tp_lost, tp_kept, fp_where;
+    MissTally misses;  // why objects were missed (miss_causes.hpp)
     std::map<std::string, int> verdicts;
     int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
     std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val;
@@ -487,6 +489,11 @@ int main(int argc, char** argv) {
         }
       }
 
+      // Why each counted object was missed, from the boxes near it (by their nearest part's depth).
+      std::vector<float> hyp_near(hyps.size());
+      for (size_t k = 0; k < hyps.size(); ++k) hyp_near[k] = st.hypotheses[k].nearest_z_m;
+      const std::vector<std::string> cause_of = misses.addFrame(labels, ep, hyps, hyp_near, out_all, out_kept);
+
       // Per-object coverage (labels with a 3D position only).
       for (size_t i = 0; i < labels.size(); ++i) {
         const auto& l = labels[i];
@@ -540,6 +547,7 @@ int main(int argc, char** argv) {
           if (best >= 0)
             std::printf("  best hyp %d IoU %.2f box %4.0f,%3.0f-%4.0f,%3.0f z %.1f %s", best, bi, hyps[best].x1,
                         hyps[best].y1, hyps[best].x2, hyps[best].y2, st.hypotheses[best].z_m, vs[best].label.c_str());
+          if (!cause_of[i].empty()) std::printf(" | %s", cause_of[i].c_str());
           std::printf("\n");
         }
         for (size_t k = 0; k < hyps.size(); ++k) {
@@ -631,6 +639,7 @@ int main(int argc, char** argv) {
       dump("true positives lost by SNV (verdict: reason):", tp_lost);
       dump("true positives kept by SNV (verdict):", tp_kept);
       dump("false positives by location (stixel only):", fp_where);
+      std::printf("%s", misses.format().c_str());
       if (depth_kept.count()) std::printf("%s", depth_kept.format().c_str());
     }
     std::printf("verdicts:");

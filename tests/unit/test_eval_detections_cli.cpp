@@ -1,5 +1,6 @@
 // nerv_eval_detections on a hand-made log: the table, the JSON and the depth
-// errors come out as computed by hand (the tool behind `tools/nerv eval detections`).
+// errors and the misses by cause come out as computed by hand (the tool behind
+// `tools/nerv eval detections`).
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
@@ -51,48 +52,94 @@ std::string run(const std::string& cmd) {
   return out;
 }
 
-}  // namespace
-
-TEST(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {
-  const fs::path cli = cliPath();
-  if (!fs::exists(cli)) GTEST_SKIP() << cli << " not built";
-  const fs::path tmp = fs::temp_directory_path() / ("nerv_test_eval_cli_" + std::to_string(getpid()));
-  fs::create_directories(tmp / "labels");
-  // One car seen from behind: centre at z 20 m, 4 m long -> nearest depth 18 m;
-  // a DontCare region on the right.
-  std::ofstream(tmp / "labels" / "000001.txt")
-      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
-      << "DontCare -1 -1 -10 600.00 100.00 700.00 200.00 -1 -1 -1 -1000 -1000 -1000 -10\n";
-  {
-    lcm::LogFile log((tmp / "run.lcmlog").string(), "w");
-    ASSERT_TRUE(log.good());
-    detections_t msg{};
-    msg.header.seq = 1;
-    msg.header.frame_id = "synthetic/000001";
-    msg.detections = {detection(100, 100, 100, 80, true, 18.5f, 18.1f),   // kept, on the car
-                      detection(300, 100, 50, 50, true, 30, 30),           // kept, on nothing
-                      detection(400, 100, 50, 50, false, 30, 30),          // removed, on nothing
-                      detection(610, 110, 40, 40, true, 25, 25)};          // kept, in DontCare
+void writeLog(const fs::path& path, const std::vector<detections_t>& frames) {
+  lcm::LogFile log(path.string(), "w");
+  ASSERT_TRUE(log.good());
+  for (size_t i = 0; i < frames.size(); ++i) {
+    detections_t msg = frames[i];
     msg.num_detections = static_cast<int32_t>(msg.detections.size());
     std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
     msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
     lcm::LogEvent e{};
-    e.eventnum = 0;
-    e.timestamp = 1;
+    e.eventnum = static_cast<int64_t>(i);
+    e.timestamp = static_cast<int64_t>(i) + 1;
     e.channel = "DETECTIONS";
     e.datalen = static_cast<int32_t>(buf.size());
     e.data = buf.data();
     log.writeEvent(&e);
   }
-  const std::string base = cli.string() + " --log " + (tmp / "run.lcmlog").string() + " --labels " +
-                           (tmp / "labels").string();
-  const std::string text = squeeze(run(base + " 2>&1"));
+}
+
+// A temporary folder with labels/ and run.lcmlog, and the command line reading them.
+class toolsEvalDetectionsCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(cli)) GTEST_SKIP() << cli << " not built";
+    fs::create_directories(tmp / "labels");
+  }
+  void TearDown() override { fs::remove_all(tmp); }
+  std::string base() const {
+    return cli.string() + " --log " + (tmp / "run.lcmlog").string() + " --labels " + (tmp / "labels").string();
+  }
+  const fs::path cli = cliPath();
+  const fs::path tmp = fs::temp_directory_path() / ("nerv_test_eval_cli_" + std::to_string(getpid()));
+};
+
+}  // namespace
+
+TEST_F(toolsEvalDetectionsCli, MissesByCauseOfAHandMadeLog) {
+  // A pedestrian (columns 300..319, rows 100..159, 15 m, no 3D size) whose only box
+  // at its depth misses its head: rows 130..159, IoU 0.5 exactly (not above): loose.
+  // A car (rows 100..179, 20 m) found only by a box the validator removed.
+  // A pole (columns 500..509, rows 80..179, 25 m) with only the facade behind it boxed.
+  std::ofstream(tmp / "labels" / "000002.txt")
+      << "Pedestrian 0.00 0 0 300.00 100.00 319.00 159.00 -1 -1 -1 -1000 -1000 15.00 0\n"
+      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
+      << "Pole 0.00 0 0 500.00 80.00 509.00 179.00 -1 -1 -1 -1000 -1000 25.00 0\n";
+  detections_t f{};
+  f.header.seq = 2;
+  f.header.frame_id = "synthetic/000002";
+  f.detections = {detection(300, 130, 20, 30, true, 15.2f, 15.0f),   // the pedestrian's lower half
+                  detection(100, 100, 100, 80, false, 18.5f, 18.1f), // the car, removed
+                  detection(480, 40, 60, 150, true, 48, 47)};        // the facade behind the pole
+  writeLog(tmp / "run.lcmlog", {f});
+  const std::string text = squeeze(run(base() + " 2>&1"));
+  const size_t all = text.find("misses by cause (stixel only):"), kept = text.find("misses by cause (stixel + SNV):");
+  ASSERT_NE(all, std::string::npos) << text;
+  ASSERT_NE(kept, std::string::npos) << text;
+  const std::string all_part = text.substr(all, kept - all), kept_part = text.substr(kept);
+  EXPECT_NE(all_part.find(" 1 loose box at its depth (IoU >= 0.3): Pedestrian 1"), std::string::npos) << text;
+  EXPECT_NE(all_part.find(" 1 only boxes at another depth: Pole 1"), std::string::npos) << text;
+  EXPECT_EQ(all_part.find("Car"), std::string::npos) << text;  // the stixels found the car
+  EXPECT_NE(kept_part.find(" 1 found by the stixels, removed by the validator: Car 1"), std::string::npos) << text;
+  EXPECT_NE(kept_part.find(" 1 loose box at its depth (IoU >= 0.3): Pedestrian 1"), std::string::npos) << text;
+  const std::string json = run(base() + " --json");
+  EXPECT_NE(json.find("\"misses_stixel_snv\":{\"found by the stixels, removed by the validator\":{\"Car\":1}"),
+            std::string::npos) << json;
+  EXPECT_NE(json.find("\"only boxes at another depth\":{\"Pole\":1}"), std::string::npos) << json;
+}
+
+TEST_F(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {
+  // One car seen from behind: centre at z 20 m, 4 m long -> nearest depth 18 m;
+  // a DontCare region on the right.
+  std::ofstream(tmp / "labels" / "000001.txt")
+      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
+      << "DontCare -1 -1 -10 600.00 100.00 700.00 200.00 -1 -1 -1 -1000 -1000 -1000 -10\n";
+  detections_t msg{};
+  msg.header.seq = 1;
+  msg.header.frame_id = "synthetic/000001";
+  msg.detections = {detection(100, 100, 100, 80, true, 18.5f, 18.1f),   // kept, on the car
+                    detection(300, 100, 50, 50, true, 30, 30),           // kept, on nothing
+                    detection(400, 100, 50, 50, false, 30, 30),          // removed, on nothing
+                    detection(610, 110, 40, 40, true, 25, 25)};          // kept, in DontCare
+  writeLog(tmp / "run.lcmlog", {msg});
+  const std::string text = squeeze(run(base() + " 2>&1"));
   // stixel only: 1 object, TP 1, FP 2 (the DontCare box counts neither way); + SNV: TP 1, FP 1
   EXPECT_NE(text.find("stixel only 1 1 2 0 0.333 1.000 0.500"), std::string::npos) << text;
   EXPECT_NE(text.find("stixel + SNV 1 1 1 0 0.500 1.000 0.667"), std::string::npos) << text;
   EXPECT_NE(text.find("10-20 m n 1 bias +0.50 m"), std::string::npos) << text;  // z_m 18.5 vs 18
   EXPECT_NE(text.find("10-20 m n 1 bias +0.10 m"), std::string::npos) << text;  // nearest_z_m 18.1 vs 18
-  const std::string json = run(base + " --json");
+  const std::string json = run(base() + " --json");
   EXPECT_NE(json.find("\"stixel_snv\":{\"objects\":1,\"tp\":1,\"fp\":1,\"fn\":0"), std::string::npos) << json;
   EXPECT_NE(json.find("\"depth_error_nearest_z\":[{\"from_m\":10,\"to_m\":20,\"count\":1"), std::string::npos)
       << json;
@@ -100,5 +147,4 @@ TEST(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {
   EXPECT_NE(run(cli.string() + " --log " + (tmp / "run.lcmlog").string() + " --labels /nonexistent 2>&1; echo rc=$?")
                 .find("label folder /nonexistent does not exist\nrc=2"),
             std::string::npos);
-  fs::remove_all(tmp);
 }

@@ -9,7 +9,9 @@
 // error of EXTRINSICS against it. The depth of the kept true positives (z_m at
 // the median stixel, nearest_z_m at the nearest part) is compared with the
 // matched label's nearest depth per 10 m band, for labels neither truncated nor
-// occluded (tools/lib/distance_accuracy.hpp).
+// occluded (tools/lib/distance_accuracy.hpp). Missed objects are counted by
+// cause (no box, a loose box at their depth, merged, a part, only boxes at
+// another depth, removed by the validator; tools/lib/miss_causes.hpp).
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
@@ -25,6 +27,7 @@
 #include "distance_accuracy.hpp"
 #include "json_writer.hpp"
 #include "log_decode.hpp"
+#include "miss_causes.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -116,6 +119,7 @@ int main(int argc, char** argv) {
 
     EvalCounts all, kept;
     DepthErrors depth;  // kept true positives vs the label's nearest depth
+    MissTally misses;   // why objects were missed
     int frames = 0, unlabelled = 0;
     std::map<std::string, std::vector<double>> stage_ms;
     std::vector<double> pitch_err, roll_err, height_err;
@@ -137,15 +141,19 @@ int main(int argc, char** argv) {
         }
         const auto labels = readKittiLabels(label_path);
         std::vector<EvalBox> hyps, validated;
+        std::vector<float> hyp_near;
         std::vector<const detection_t*> validated_det;
         for (const auto& d : det.detections) {
           const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
           hyps.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
+          hyp_near.push_back(d.nearest_z_m);
           if (d.kept) validated.push_back(b), validated_det.push_back(&d);
         }
-        all.add(evaluateFrame(hyps, labels, o.params));
+        const auto all_matches = matchDetections(hyps, labels, o.params);
+        all.add(countMatches(all_matches, labels, o.params));
         const auto matches = matchDetections(validated, labels, o.params);
         kept.add(countMatches(matches, labels, o.params));
+        misses.addFrame(labels, o.params, hyps, hyp_near, all_matches, matches);
         for (size_t k = 0; k < matches.size(); ++k)
           if (matches[k].outcome == MatchOutcome::TruePositive)
             depth.add(labels[matches[k].label], validated_det[k]->z_m, validated_det[k]->nearest_z_m);
@@ -205,6 +213,18 @@ int main(int argc, char** argv) {
         }
         j.endArray();
       }
+      for (const auto& [name, table] : {std::pair<const char*, const MissTally::Table*>{"misses_stixel_only", &misses.stixelOnly()},
+                                        {"misses_stixel_snv", &misses.stixelSnv()}}) {
+        j.key(name);
+        j.beginObject();
+        for (const auto& [cause, by_class] : *table) {
+          j.key(cause);
+          j.beginObject();
+          for (const auto& [type, n] : by_class) j.field(type, n);
+          j.endObject();
+        }
+        j.endObject();
+      }
       j.key("stage_ms");
       j.beginObject();
       for (const auto& [s, v] : stage_ms) j.field(s, mean(v));
@@ -229,6 +249,7 @@ int main(int argc, char** argv) {
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
       std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,
                   c.precision(), c.recall(), c.f1());
+    std::printf("%s", misses.format().c_str());
     if (depth.count()) std::printf("%s", depth.format().c_str());
     std::printf("mean ms per frame:");
     for (const auto& [s, v] : stage_ms) std::printf(" %s %.2f", s.c_str(), mean(v));

@@ -23,13 +23,10 @@ float iou(const EvalBox& a, const EvalBox& b) {
   return uni > 0 ? inter / uni : 0.f;
 }
 
-namespace {
-// A labelled object the count includes (not DontCare, its class counted, not too far).
 bool isCounted(const KittiLabel& l, const EvalParams& params) {
   return l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
          !(l.z > 0 && l.z > params.max_distance_m);
 }
-}  // namespace
 
 std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,
                                             const std::vector<KittiLabel>& labels,

@@ -53,6 +53,10 @@ float iou(const EvalBox& a, const EvalBox& b);
 EvalBox detectionBox(int x, int y, int w, int h, float score = 0);
 EvalBox labelBox(const KittiLabel& label);
 
+// A labelled object the count includes: not DontCare, its class counted, not
+// farther than max_distance_m. The others are neither hits nor misses.
+bool isCounted(const KittiLabel& label, const EvalParams& params);
+
 // What became of each detection of a frame: a true positive of label `label`
 // (an index into the labels), a false positive, or ignored (DontCare, or an
 // ignored object). Same order as the detections.
