@@ -41,6 +41,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -421,7 +422,9 @@ int main(int argc, char** argv) {
       std::vector<KittiLabel> labels = readKittiLabels(label_path);
       if (o.visible)
         for (auto& l : labels)
-          if (l.type != "DontCare" && (l.occluded >= 2 || l.truncated >= 0.5f)) l.z = 1e9f;  // -> ignored
+          // -> ignored at any --max-distance (1e9, the default limit, was not beyond it, so
+          // --visible without --max-distance counted the hidden objects as misses)
+          if (l.type != "DontCare" && (l.occluded >= 2 || l.truncated >= 0.5f)) l.z = std::numeric_limits<float>::infinity();
 
       std::vector<EvalBox> hyps, val;
       std::vector<size_t> val_index;

@@ -4,6 +4,7 @@
 #  - the held-out sets at 2 frames: four rows, each the figures bench_detection
 #    itself prints for that folder;
 #  - a second run renders nothing (the sets are cached by generator + preset);
+#  - bench_detection --visible ignores hidden objects without --max-distance too;
 #  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
 #  - bad options end with one line naming them and exit 2.
 # No LCM bus is involved (bench_detection runs the stages in-process).
@@ -30,6 +31,15 @@ want=$(awk '/^stixel \+ SNV/ {printf "%.3f/%.3f/%.3f", $(NF-2), $(NF-1), $NF}' "
 got=$(awk '$1 == "urban_14" {print $4}' "$out/first.txt")
 [[ -n "$want" && "$got" == "$want" ]] || fail "urban_14 row says $got, bench_detection says $want"
 pass "urban_14's row matches bench_detection ($got)"
+
+# Hidden objects (--visible) are ignored with or without a distance limit.
+objects() {
+  "$BIN/bench_detection" --data "$out/sets/urban_13_2" --visible --cache "$out/cache" "$@" 2>&1 \
+    | awk '/^stixel only/ {print $3}'
+}
+a=$(objects) b=$(objects --max-distance 1000)
+[[ -n "$a" && "$a" == "$b" ]] || fail "--visible counts $a objects without a distance limit, $b with --max-distance 1000"
+pass "--visible ignores hidden objects with or without --max-distance ($a objects)"
 
 nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" >"$out/second.txt" 2>"$out/second.err" \
   || fail "second run exited with $?"
