@@ -67,6 +67,9 @@ html="$out/report/report.html"
 grep -q 'stixel + SNV (kept)' "$html" || fail "no precision/recall table in the report"
 grep -q 'Distance of the kept detections' "$html" && grep -q '<td>nearest_z_m</td>' "$html" \
   || fail "no distance table in the report (6 urban frames have fully visible cars)"
+grep -q 'Why objects were missed' "$html" \
+  && { grep -q 'No labelled object was missed' "$html" || grep -q '<th>by class (stixel + SNV)</th>' "$html"; } \
+  || fail "no misses-by-cause section in the report"
 if grep -Eq '<(script|link)[ >]|src="http|url\(http' "$html"; then fail "the report refers to something outside itself"; fi
 pass "report written: $(cat "$out/report.txt")"
 

@@ -19,6 +19,7 @@
 #include "kitti_labels.hpp"
 #include "log_summary.hpp"
 #include "message_convert.hpp"
+#include "miss_causes.hpp"
 #include "pitch_distribution.hpp"
 #include "svg_plot.hpp"
 
@@ -138,6 +139,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
   std::vector<Row> rows;
   int label_problems = 0;
   DepthErrors depth;  // kept true positives vs the labels' nearest depth
+  MissTally misses;   // why labelled objects were missed (miss_causes.hpp)
   {
     LogFrameOptions read;
     read.keep_images = false;
@@ -186,15 +188,19 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
           try {
             const auto labels = readKittiLabels(path);
             std::vector<EvalBox> all, kept;
+            std::vector<float> all_near;
             std::vector<const detection_t*> kept_det;
             for (const auto& d : f.detections->detections) {
               const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
               all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
+              all_near.push_back(d.nearest_z_m);
               if (d.kept) kept.push_back(b), kept_det.push_back(&d);
             }
-            r.eval_all = evaluateFrame(all, labels, options.eval);
+            const auto all_matches = matchDetections(all, labels, options.eval);
+            r.eval_all = countMatches(all_matches, labels, options.eval);
             const auto matches = matchDetections(kept, labels, options.eval);
             r.eval_kept = countMatches(matches, labels, options.eval);
+            misses.addFrame(labels, options.eval, all, all_near, all_matches, matches);
             for (size_t k = 0; k < matches.size(); ++k)
               if (matches[k].outcome == MatchOutcome::TruePositive)
                 depth.add(labels[matches[k].label], kept_det[k]->z_m, kept_det[k]->nearest_z_m);
@@ -486,6 +492,28 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
                             fmt("%.2f", b.p95_abs_m), fmt("%.1f %%", 100.0 * b.median_rel)});
       page.table({"depth", "range", "boxes", "bias [m]", "median |error| [m]", "p95 |error| [m]", "median |error|"},
                  rows_d);
+    }
+    page.heading("Why objects were missed");
+    if (misses.stixelOnly().empty() && misses.stixelSnv().empty()) {
+      page.paragraph("No labelled object was missed.");
+    } else {
+      page.paragraph("Each missed object by the boxes near it, judged by the depth of each box's nearest part against "
+                     "the object's nearest depth (within 1.5 m or 15 %; tools/lib/miss_causes): no box overlaps it, "
+                     "only boxes at another depth, a box at its depth covering only a part of it or merged with a "
+                     "neighbour (IoU < 0.3), a loose box at its depth, or the validator removed the box that found it.");
+      std::map<std::string, std::pair<int, int>> counts;  // cause -> (stixel only, stixel + SNV)
+      std::map<std::string, std::map<std::string, int>> classes;  // cause -> class -> count (stixel + SNV)
+      for (const auto& [cause, by_class] : misses.stixelOnly())
+        for (const auto& [type, n] : by_class) counts[cause].first += n;
+      for (const auto& [cause, by_class] : misses.stixelSnv())
+        for (const auto& [type, n] : by_class) counts[cause].second += n, classes[cause][type] += n;
+      std::vector<std::vector<std::string>> rows_m;
+      for (const auto& [cause, n] : counts) {
+        std::string by;
+        for (const auto& [type, k] : classes[cause]) by += (by.empty() ? "" : ", ") + type + " " + std::to_string(k);
+        rows_m.push_back({cause, std::to_string(n.first), std::to_string(n.second), by});
+      }
+      page.table({"cause", "stixel only", "stixel + SNV", "by class (stixel + SNV)"}, rows_m);
     }
     page.heading("Frames with the most errors");
     if (worst.empty()) page.paragraph("No labelled frame with a false positive or a miss.");
