@@ -5,6 +5,7 @@
 #    itself prints for that folder;
 #  - a second run renders nothing (the sets are cached by generator + preset);
 #  - bench_detection --visible ignores hidden objects without --max-distance too;
+#  - --json holds the same figures;
 #  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
 #  - bad options end with one line naming them and exit 2.
 # No LCM bus is involved (bench_detection runs the stages in-process).
@@ -46,6 +47,15 @@ nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" >"$out/second.tx
 ! grep -q rendering "$out/second.err" || fail "the second run rendered again: $(cat "$out/second.err")"
 cmp -s "$out/first.txt" "$out/second.txt" || fail "the second run printed other figures"
 pass "second run reuses the rendered sets and prints the same figures"
+
+nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" --json >"$out/rows.json" 2>/dev/null \
+  || fail "--json exited with $?"
+[[ $(grep -o '"set":"' "$out/rows.json" | wc -l) == 4 ]] && grep -q '^{"disparity":"matcher",.*"sets":\[{"set":"urban_13","scene":"urban","seed":13,"frames":2,' "$out/rows.json" \
+  || fail "--json does not hold the four sets: $(head -c 300 "$out/rows.json")"
+f1=$(sed 's/{"set"/\n{"set"/g' "$out/rows.json" | grep '^{"set":"urban_14"' | grep -o '"stixel_snv":{[^}]*}' \
+  | grep -o '"f1":[0-9.]*' | cut -d: -f2)
+[[ -n "$f1" && "$got" == */"$f1" ]] || fail "urban_14's JSON F1 $f1 differs from its row $got"
+pass "--json holds the same figures ($f1)"
 
 nerv eval synthetic --sets heldout --frames 2 --out "$out/sets" --true-disparity >"$out/true.txt" 2>&1 \
   || fail "--true-disparity exited with $?"
