@@ -114,9 +114,11 @@ TEST_F(toolsEvalDetectionsCli, MissesByCauseOfAHandMadeLog) {
   EXPECT_NE(kept_part.find(" 1 found by the stixels, removed by the validator: Car 1"), std::string::npos) << text;
   EXPECT_NE(kept_part.find(" 1 loose box at its depth (IoU >= 0.3): Pedestrian 1"), std::string::npos) << text;
   const std::string json = run(base() + " --json");
-  EXPECT_NE(json.find("\"misses_stixel_snv\":{\"found by the stixels, removed by the validator\":{\"Car\":1}"),
+  EXPECT_NE(json.find("\"misses_stixel_only\":{\"other_depth\":{\"Pole\":1},\"loose_box\":{\"Pedestrian\":1}}"),
             std::string::npos) << json;
-  EXPECT_NE(json.find("\"only boxes at another depth\":{\"Pole\":1}"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"misses_stixel_snv\":{\"other_depth\":{\"Pole\":1},\"loose_box\":{\"Pedestrian\":1},"
+                      "\"removed_by_validator\":{\"Car\":1}}"),
+            std::string::npos) << json;
 }
 
 TEST_F(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {

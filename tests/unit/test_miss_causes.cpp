@@ -65,6 +65,15 @@ TEST(toolsMissCauses, LabelsWithoutDepthAreJudgedByIoU) {
   EXPECT_EQ(missCause(l, {box(100, 50, 40, 20)}, {45.0f}), MissCause::Merged);
 }
 
+TEST(toolsMissCauses, KeysAreStableIdentifiers) {
+  EXPECT_EQ(missCauseKey(MissCause::NoBox), "no_box");
+  EXPECT_EQ(missCauseKey(MissCause::OtherDepth), "other_depth");
+  EXPECT_EQ(missCauseKey(MissCause::Partial), "part");
+  EXPECT_EQ(missCauseKey(MissCause::Merged), "merged");
+  EXPECT_EQ(missCauseKey(MissCause::LooseBox), "loose_box");
+  EXPECT_EQ(missCauseKey(MissCause::RemovedByValidator), "removed_by_validator");
+}
+
 TEST(toolsMissCauses, NamesSayTheThreshold) {
   EXPECT_EQ(missCauseName(MissCause::NoBox), "no box overlaps it");
   EXPECT_EQ(missCauseName(MissCause::LooseBox), "loose box at its depth (IoU >= 0.3)");
@@ -97,8 +106,8 @@ TEST(toolsMissCauses, TallyCountsOnlyCountedMissesAndNamesTheValidatorsRemovals)
   EXPECT_EQ(cause[2], "");
   EXPECT_EQ(cause[3], "");  // found
   EXPECT_EQ(tally.stixelOnly().size(), 1u);
-  EXPECT_EQ(tally.stixelOnly().at("loose box at its depth (IoU >= 0.3)").at("Pedestrian"), 1);
-  EXPECT_EQ(tally.stixelSnv().at("found by the stixels, removed by the validator").at("Car"), 1);
+  EXPECT_EQ(tally.stixelOnly().at(MissCause::LooseBox).at("Pedestrian"), 1);
+  EXPECT_EQ(tally.stixelSnv().at(MissCause::RemovedByValidator).at("Car"), 1);
   const std::string text = tally.format();
   EXPECT_NE(text.find("misses by cause (stixel only):\n      1  loose box at its depth (IoU >= 0.3): Pedestrian 1\n"),
             std::string::npos) << text;

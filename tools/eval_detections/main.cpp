@@ -218,7 +218,7 @@ int main(int argc, char** argv) {
         j.key(name);
         j.beginObject();
         for (const auto& [cause, by_class] : *table) {
-          j.key(cause);
+          j.key(missCauseKey(cause));
           j.beginObject();
           for (const auto& [type, n] : by_class) j.field(type, n);
           j.endObject();

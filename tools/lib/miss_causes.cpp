@@ -39,6 +39,19 @@ std::string missCauseName(MissCause cause, const MissCauseParams& p) {
     case MissCause::Merged: return std::string("box at its depth, IoU < ") + iou + ", larger (merged)";
     case MissCause::Partial: return std::string("box at its depth, IoU < ") + iou + ", smaller (a part)";
     case MissCause::OtherDepth: return "only boxes at another depth";
+    case MissCause::RemovedByValidator: return "found by the stixels, removed by the validator";
+  }
+  return "?";
+}
+
+std::string missCauseKey(MissCause cause) {
+  switch (cause) {
+    case MissCause::NoBox: return "no_box";
+    case MissCause::OtherDepth: return "other_depth";
+    case MissCause::Partial: return "part";
+    case MissCause::Merged: return "merged";
+    case MissCause::LooseBox: return "loose_box";
+    case MissCause::RemovedByValidator: return "removed_by_validator";
   }
   return "?";
 }
@@ -53,17 +66,19 @@ std::vector<std::string> MissTally::addFrame(const std::vector<KittiLabel>& labe
     if (m.outcome == MatchOutcome::TruePositive && m.label >= 0 && size_t(m.label) < labels.size()) hit_all[m.label] = true;
   for (const DetectionMatch& m : kept_matches)
     if (m.outcome == MatchOutcome::TruePositive && m.label >= 0 && size_t(m.label) < labels.size()) hit_kept[m.label] = true;
-  std::vector<std::string> cause(labels.size());
+  std::vector<std::string> names(labels.size());
   for (size_t i = 0; i < labels.size(); ++i) {
     const KittiLabel& l = labels[i];
     if (!isCounted(l, eval)) continue;
+    MissCause cause = MissCause::RemovedByValidator;
     if (!hit_all[i]) {
-      cause[i] = missCauseName(missCause(l, boxes, box_depth_m, params_), params_);
-      ++all_[cause[i]][l.type];
+      cause = missCause(l, boxes, box_depth_m, params_);
+      names[i] = missCauseName(cause, params_);
+      ++all_[cause][l.type];
     }
-    if (!hit_kept[i]) ++kept_[hit_all[i] ? "found by the stixels, removed by the validator" : cause[i]][l.type];
+    if (!hit_kept[i]) ++kept_[cause][l.type];
   }
-  return cause;
+  return names;
 }
 
 std::string MissTally::format() const {
@@ -78,7 +93,7 @@ std::string MissTally::format() const {
       for (const auto& [type, k] : by_class) n += k, classes += (classes.empty() ? "" : ", ") + type + " " + std::to_string(k);
       char line[64];
       std::snprintf(line, sizeof line, "  %5d  ", n);
-      out += line + c + ": " + classes + "\n";
+      out += line + missCauseName(c, params_) + ": " + classes + "\n";
     }
   }
   return out;

@@ -17,12 +17,14 @@
 
 namespace nerv {
 
+// In table order, from no trace of the object to a box the validator removed.
 enum class MissCause {
-  NoBox,       // no box overlaps the object
-  LooseBox,    // the best box at its depth has IoU >= loose_min_iou (but not the match threshold)
-  Merged,      // boxes at its depth overlap it, the best with IoU < loose_min_iou and larger than it
-  Partial,     // ... and not larger than it: only a part of the object
-  OtherDepth,  // every box overlapping it lies at another depth
+  NoBox,              // no box overlaps the object
+  OtherDepth,         // every box overlapping it lies at another depth
+  Partial,            // boxes at its depth overlap it, the best with IoU < loose_min_iou, not larger than it
+  Merged,             // ... the best larger than it
+  LooseBox,           // the best box at its depth has IoU >= loose_min_iou (but not the match threshold)
+  RemovedByValidator, // (tallies of the kept boxes only) a box the validator removed had found it
 };
 
 struct MissCauseParams {
@@ -40,18 +42,22 @@ MissCause missCause(const KittiLabel& label, const std::vector<EvalBox>& boxes,
 
 // A short phrase for tables: "no box overlaps it", "loose box at its depth (IoU >= 0.3)", ...
 std::string missCauseName(MissCause cause, const MissCauseParams& params = {});
+// A stable identifier for JSON: "no_box", "other_depth", "part", "merged", "loose_box",
+// "removed_by_validator".
+std::string missCauseKey(MissCause cause);
 
 // The misses of an evaluation by cause and class, for "stixel only" (every box)
 // and "stixel + SNV" (the kept boxes; an object only the removed boxes found is
 // "found by the stixels, removed by the validator").
 class MissTally {
  public:
-  using Table = std::map<std::string, std::map<std::string, int>>;  // cause -> class -> count
+  using Table = std::map<MissCause, std::map<std::string, int>>;  // cause -> class -> count
 
   explicit MissTally(MissCauseParams params = {}) : params_(params) {}
   // One frame: every box with its nearest depth, and the matches of all boxes and
   // of the kept ones (matchDetections of the same labels and eval params).
-  // Returns each label's cause as a stixel-only miss ("" when it was found or is not counted).
+  // Returns each label's cause as a stixel-only miss, by name ("" when it was found or is
+  // not counted).
   std::vector<std::string> addFrame(const std::vector<KittiLabel>& labels, const EvalParams& eval,
                                     const std::vector<EvalBox>& boxes, const std::vector<float>& box_depth_m,
                                     const std::vector<DetectionMatch>& all_matches,
@@ -60,6 +66,7 @@ class MissTally {
   const Table& stixelSnv() const { return kept_; }
   // Both tables as text: one line per cause, its count and the count per class.
   std::string format() const;
+  const MissCauseParams& params() const { return params_; }
 
  private:
   MissCauseParams params_;

@@ -501,8 +501,8 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
                      "the object's nearest depth (within 1.5 m or 15 %; tools/lib/miss_causes): no box overlaps it, "
                      "only boxes at another depth, a box at its depth covering only a part of it or merged with a "
                      "neighbour (IoU < 0.3), a loose box at its depth, or the validator removed the box that found it.");
-      std::map<std::string, std::pair<int, int>> counts;  // cause -> (stixel only, stixel + SNV)
-      std::map<std::string, std::map<std::string, int>> classes;  // cause -> class -> count (stixel + SNV)
+      std::map<MissCause, std::pair<int, int>> counts;  // cause -> (stixel only, stixel + SNV)
+      std::map<MissCause, std::map<std::string, int>> classes;  // cause -> class -> count (stixel + SNV)
       for (const auto& [cause, by_class] : misses.stixelOnly())
         for (const auto& [type, n] : by_class) counts[cause].first += n;
       for (const auto& [cause, by_class] : misses.stixelSnv())
@@ -511,7 +511,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
       for (const auto& [cause, n] : counts) {
         std::string by;
         for (const auto& [type, k] : classes[cause]) by += (by.empty() ? "" : ", ") + type + " " + std::to_string(k);
-        rows_m.push_back({cause, std::to_string(n.first), std::to_string(n.second), by});
+        rows_m.push_back({missCauseName(cause, misses.params()), std::to_string(n.first), std::to_string(n.second), by});
       }
       page.table({"cause", "stixel only", "stixel + SNV", "by class (stixel + SNV)"}, rows_m);
     }
