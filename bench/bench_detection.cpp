@@ -338,6 +338,7 @@ int main(int argc, char** argv) {
 
     EvalParams ep;
     ep.max_distance_m = o.max_distance_m;
+    ep.visible_only = o.visible;
     EvalCounts all, kept;
     DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
@@ -419,12 +420,9 @@ int main(int argc, char** argv) {
       if (o.labels.empty()) continue;
       const std::string label_path = o.labels + "/" + f.name + ".txt";
       if (!fs::exists(label_path)) continue;
-      std::vector<KittiLabel> labels = readKittiLabels(label_path);
-      if (o.visible)
-        for (auto& l : labels)
-          // -> ignored at any --max-distance (1e9, the default limit, was not beyond it, so
-          // --visible without --max-distance counted the hidden objects as misses)
-          if (l.type != "DontCare" && (l.occluded >= 2 || l.truncated >= 0.5f)) l.z = std::numeric_limits<float>::infinity();
+      const std::vector<KittiLabel> labels = readKittiLabels(label_path);
+      // Hidden objects (--visible: ep.visible_only) count neither way.
+      auto hidden = [&](const KittiLabel& l) { return ep.visible_only && l.type != "DontCare" && isHidden(l); };
 
       std::vector<EvalBox> hyps, val;
       std::vector<size_t> val_index;
@@ -445,7 +443,7 @@ int main(int argc, char** argv) {
 
       for (size_t i = 0; i < labels.size(); ++i) {
         const auto& l = labels[i];
-        if (l.type == "DontCare" || (l.z > 0 && l.z > ep.max_distance_m)) continue;
+        if (!isCounted(l, ep)) continue;
         ++cls_objects[l.type];
       }
       std::vector<bool> kept_tp_label(labels.size(), false);
@@ -483,7 +481,7 @@ int main(int argc, char** argv) {
             const KittiLabel& l = labels[best_label];
             const bool found = std::any_of(out_all.begin(), out_all.end(),
                                            [&](const DetectionMatch& m) { return m.label == best_label; });
-            where += l.z >= 1e8f ? " (hidden object, ignored)"
+            where += hidden(l) ? " (hidden object, ignored)"
                      : l.z > ep.max_distance_m ? " (object beyond the distance, ignored)"
                      : !ep.classes.empty() && !ep.classes.count(l.type) ? " (other class, ignored)"
                      : found ? " (second box on a found object)" : " (missed object)";
@@ -500,7 +498,7 @@ int main(int argc, char** argv) {
       // Per-object coverage (labels with a 3D position only).
       for (size_t i = 0; i < labels.size(); ++i) {
         const auto& l = labels[i];
-        if (l.type == "DontCare" || l.x < -999 || l.z <= 0 || l.z > ep.max_distance_m) continue;
+        if (l.type == "DontCare" || l.x < -999 || l.z <= 0 || l.z > ep.max_distance_m || hidden(l)) continue;
         int ti = -1;
         float bestd = 1e9f;
         for (size_t t = 0; t < tracks.size(); ++t) {
@@ -516,7 +514,6 @@ int main(int argc, char** argv) {
         }
         Track& tr = tracks[ti];
         tr.x = l.x, tr.z = l.z, tr.last_frame = static_cast<int>(fi);
-        if (o.visible && (l.occluded >= 2 || l.truncated >= 0.5f)) continue;
         ++tr.frames;
         tr.min_z = std::min(tr.min_z, l.z);
         tr.max_z = std::max(tr.max_z, l.z);
@@ -540,7 +537,7 @@ int main(int argc, char** argv) {
           if (out_all[i].outcome == MatchOutcome::TruePositive) hit[out_all[i].label] = true;
         for (size_t i = 0; i < labels.size(); ++i) {
           const auto& l = labels[i];
-          if (hit[i] || l.type == "DontCare" || (l.z > 0 && l.z > ep.max_distance_m)) continue;
+          if (hit[i] || !isCounted(l, ep)) continue;
           int best = -1;
           float bi = 0;
           for (size_t k = 0; k < hyps.size(); ++k)

@@ -95,3 +95,28 @@ TEST(toolsDetectionEval, MatchesNameTheLabelOfEachTruePositive) {
   EXPECT_EQ(m[1].label, -1);
   EXPECT_EQ(m[2].outcome, MatchOutcome::Ignored);
 }
+
+TEST(toolsDetectionEval, VisibleOnlyIgnoresHiddenAndTruncatedObjects) {
+  KittiLabel hidden = label("Car", 100, 0, 110, 10), cut = label("Car", 200, 0, 210, 10), part = label("Car", 300, 0, 310, 10);
+  hidden.occluded = 2;   // largely hidden
+  cut.truncated = 0.5f;  // half outside the image
+  part.occluded = 1;     // partly hidden: still counted
+  const std::vector<KittiLabel> labels = {label("Car", 0, 0, 10, 10), hidden, cut, part};
+  const std::vector<EvalBox> boxes = {{0, 0, 10, 10}, {100, 0, 110, 10}, {300, 0, 310, 10}};
+  EvalParams all, visible;
+  visible.visible_only = true;
+  EXPECT_TRUE(isCounted(hidden, all));
+  EXPECT_FALSE(isCounted(hidden, visible));
+  EXPECT_FALSE(isCounted(cut, visible));
+  EXPECT_TRUE(isCounted(part, visible));
+  const EvalCounts c_all = evaluateFrame(boxes, labels, all), c_vis = evaluateFrame(boxes, labels, visible);
+  EXPECT_EQ(c_all.objects, 4);
+  EXPECT_EQ(c_all.tp, 3);
+  EXPECT_EQ(c_all.fn, 1);
+  // Visible only: the truncated car is no miss, and the box on the hidden one no false positive.
+  EXPECT_EQ(c_vis.objects, 2);
+  EXPECT_EQ(c_vis.tp, 2);
+  EXPECT_EQ(c_vis.fp, 0);
+  EXPECT_EQ(c_vis.fn, 0);
+  EXPECT_EQ(matchDetections(boxes, labels, visible)[1].outcome, MatchOutcome::Ignored);
+}

@@ -150,3 +150,23 @@ TEST_F(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {
                 .find("label folder /nonexistent does not exist\nrc=2"),
             std::string::npos);
 }
+
+TEST_F(toolsEvalDetectionsCli, VisibleIgnoresHiddenObjectsAndTheBoxesOnThem) {
+  // A visible car found, a largely hidden one (occluded 2) found, and a hidden one missed.
+  std::ofstream(tmp / "labels" / "000003.txt")
+      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
+      << "Car 0.00 2 -1.57 300.00 100.00 399.00 179.00 1.50 1.80 4.00 2.00 1.65 20.00 -1.5708\n"
+      << "Car 0.00 2 -1.57 500.00 100.00 599.00 179.00 1.50 1.80 4.00 4.00 1.65 20.00 -1.5708\n";
+  detections_t f{};
+  f.header.seq = 3;
+  f.header.frame_id = "synthetic/000003";
+  f.detections = {detection(100, 100, 100, 80, true, 18.5f, 18.1f), detection(300, 100, 100, 80, true, 18.5f, 18.1f)};
+  writeLog(tmp / "run.lcmlog", {f});
+  // All three count without --visible: TP 2, FN 1.
+  EXPECT_NE(squeeze(run(base() + " 2>&1")).find("stixel + SNV 3 2 0 1 1.000 0.667 0.800"), std::string::npos);
+  // With it only the visible car counts, and the box on the hidden one is neither TP nor FP.
+  const std::string text = squeeze(run(base() + " --visible 2>&1"));
+  EXPECT_NE(text.find("occlusion < 2 and truncation < 0.5 only"), std::string::npos) << text;
+  EXPECT_NE(text.find("stixel + SNV 1 1 0 0 1.000 1.000 1.000"), std::string::npos) << text;
+  EXPECT_NE(run(base() + " --visible --json").find("\"visible_only\":true"), std::string::npos);
+}

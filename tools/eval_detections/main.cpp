@@ -1,10 +1,12 @@
 // nerv_eval_detections: the reference method's table from a recorded run.
 //
 //   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
-//                        [--min-iou 0.5] [--extrinsics FILE] [--json]
+//                        [--min-iou 0.5] [--visible] [--extrinsics FILE] [--json]
 //
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
+// --visible ignores largely hidden objects (occluded 2) and those half outside
+// the image (truncated >= 0.5), as bench_detection --visible does.
 // --extrinsics FILE (lines "frame pitch_deg roll_deg height_m") adds the pose
 // error of EXTRINSICS against it. The depth of the kept true positives (z_m at
 // the median stixel, nearest_z_m at the nearest part) is compared with the
@@ -58,6 +60,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--max-distance") o.params.max_distance_m = std::stof(value());
     else if (a == "--min-iou") o.params.min_iou = std::stof(value());
     else if (a == "--json") o.json = true;
+    else if (a == "--visible") o.params.visible_only = true;
     else if (a == "--classes") {
       std::stringstream list(value());
       for (std::string c; std::getline(list, c, ',');)
@@ -184,6 +187,7 @@ int main(int argc, char** argv) {
       j.beginObject();
       j.field("frames", frames);
       j.field("frames_without_labels", unlabelled);
+      j.field("visible_only", o.params.visible_only);
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel_only", all}, {"stixel_snv", kept}}) {
         j.key(name);
         j.beginObject();
@@ -243,8 +247,9 @@ int main(int argc, char** argv) {
       std::printf("%s\n", j.str().c_str());
       return 0;
     }
-    std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s\n", frames, unlabelled,
-                o.params.min_iou, o.params.max_distance_m < 1e8 ? ", distance-limited" : "");
+    std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s%s\n", frames, unlabelled,
+                o.params.min_iou, o.params.max_distance_m < 1e8 ? ", distance-limited" : "",
+                o.params.visible_only ? ", occlusion < 2 and truncation < 0.5 only" : "");
     std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
       std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,

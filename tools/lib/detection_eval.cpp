@@ -23,9 +23,11 @@ float iou(const EvalBox& a, const EvalBox& b) {
   return uni > 0 ? inter / uni : 0.f;
 }
 
+bool isHidden(const KittiLabel& l) { return l.occluded >= 2 || l.truncated >= 0.5f; }
+
 bool isCounted(const KittiLabel& l, const EvalParams& params) {
   return l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
-         !(l.z > 0 && l.z > params.max_distance_m);
+         !(l.z > 0 && l.z > params.max_distance_m) && !(params.visible_only && isHidden(l));
 }
 
 std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,

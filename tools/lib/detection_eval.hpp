@@ -25,6 +25,8 @@ struct EvalParams {
   float dontcare_min_overlap = 0.5f;  // share of the detection's area inside a DontCare box
   float max_distance_m = 1e9f;        // labelled objects farther than this are ignored (z field)
   std::set<std::string> classes;      // counted types; empty = every type but DontCare
+  bool visible_only = false;          // objects largely hidden (occluded 2) or half outside the image
+                                      // (truncated >= 0.5) are ignored, as by `--visible`
 };
 
 struct EvalCounts {
@@ -54,8 +56,11 @@ EvalBox detectionBox(int x, int y, int w, int h, float score = 0);
 EvalBox labelBox(const KittiLabel& label);
 
 // A labelled object the count includes: not DontCare, its class counted, not
-// farther than max_distance_m. The others are neither hits nor misses.
+// farther than max_distance_m, and visible when visible_only. The others are
+// neither hits nor misses, and detections on them count neither way.
 bool isCounted(const KittiLabel& label, const EvalParams& params);
+// Largely hidden or half outside the image (what visible_only ignores).
+bool isHidden(const KittiLabel& label);
 
 // What became of each detection of a frame: a true positive of label `label`
 // (an index into the labels), a false positive, or ignored (DontCare, or an
