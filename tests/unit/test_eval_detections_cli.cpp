@@ -52,6 +52,17 @@ std::string run(const std::string& cmd) {
   return out;
 }
 
+// DETECTIONS of frame "synthetic/<seq, 6 digits>".
+detections_t frame(int seq, std::vector<detection_t> detections) {
+  detections_t f{};
+  f.header.seq = seq;
+  char name[32];
+  std::snprintf(name, sizeof name, "synthetic/%06d", seq);
+  f.header.frame_id = name;
+  f.detections = std::move(detections);
+  return f;
+}
+
 void writeLog(const fs::path& path, const std::vector<detections_t>& frames) {
   lcm::LogFile log(path.string(), "w");
   ASSERT_TRUE(log.good());
@@ -96,13 +107,9 @@ TEST_F(toolsEvalDetectionsCli, MissesByCauseOfAHandMadeLog) {
       << "Pedestrian 0.00 0 0 300.00 100.00 319.00 159.00 -1 -1 -1 -1000 -1000 15.00 0\n"
       << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
       << "Pole 0.00 0 0 500.00 80.00 509.00 179.00 -1 -1 -1 -1000 -1000 25.00 0\n";
-  detections_t f{};
-  f.header.seq = 2;
-  f.header.frame_id = "synthetic/000002";
-  f.detections = {detection(300, 130, 20, 30, true, 15.2f, 15.0f),   // the pedestrian's lower half
-                  detection(100, 100, 100, 80, false, 18.5f, 18.1f), // the car, removed
-                  detection(480, 40, 60, 150, true, 48, 47)};        // the facade behind the pole
-  writeLog(tmp / "run.lcmlog", {f});
+  writeLog(tmp / "run.lcmlog", {frame(2, {detection(300, 130, 20, 30, true, 15.2f, 15.0f),     // the pedestrian's lower half
+                                          detection(100, 100, 100, 80, false, 18.5f, 18.1f),  // the car, removed
+                                          detection(480, 40, 60, 150, true, 48, 47)})});      // the facade behind the pole
   const std::string text = squeeze(run(base() + " 2>&1"));
   const size_t all = text.find("misses by cause (stixel only):"), kept = text.find("misses by cause (stixel + SNV):");
   ASSERT_NE(all, std::string::npos) << text;
@@ -127,14 +134,10 @@ TEST_F(toolsEvalDetectionsCli, TableJsonAndDepthErrorsOfAHandMadeLog) {
   std::ofstream(tmp / "labels" / "000001.txt")
       << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
       << "DontCare -1 -1 -10 600.00 100.00 700.00 200.00 -1 -1 -1 -1000 -1000 -1000 -10\n";
-  detections_t msg{};
-  msg.header.seq = 1;
-  msg.header.frame_id = "synthetic/000001";
-  msg.detections = {detection(100, 100, 100, 80, true, 18.5f, 18.1f),   // kept, on the car
-                    detection(300, 100, 50, 50, true, 30, 30),           // kept, on nothing
-                    detection(400, 100, 50, 50, false, 30, 30),          // removed, on nothing
-                    detection(610, 110, 40, 40, true, 25, 25)};          // kept, in DontCare
-  writeLog(tmp / "run.lcmlog", {msg});
+  writeLog(tmp / "run.lcmlog", {frame(1, {detection(100, 100, 100, 80, true, 18.5f, 18.1f),  // kept, on the car
+                                          detection(300, 100, 50, 50, true, 30, 30),        // kept, on nothing
+                                          detection(400, 100, 50, 50, false, 30, 30),       // removed, on nothing
+                                          detection(610, 110, 40, 40, true, 25, 25)})});    // kept, in DontCare
   const std::string text = squeeze(run(base() + " 2>&1"));
   // stixel only: 1 object, TP 1, FP 2 (the DontCare box counts neither way); + SNV: TP 1, FP 1
   EXPECT_NE(text.find("stixel only 1 1 2 0 0.333 1.000 0.500"), std::string::npos) << text;
@@ -157,11 +160,8 @@ TEST_F(toolsEvalDetectionsCli, VisibleIgnoresHiddenObjectsAndTheBoxesOnThem) {
       << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
       << "Car 0.00 2 -1.57 300.00 100.00 399.00 179.00 1.50 1.80 4.00 2.00 1.65 20.00 -1.5708\n"
       << "Car 0.00 2 -1.57 500.00 100.00 599.00 179.00 1.50 1.80 4.00 4.00 1.65 20.00 -1.5708\n";
-  detections_t f{};
-  f.header.seq = 3;
-  f.header.frame_id = "synthetic/000003";
-  f.detections = {detection(100, 100, 100, 80, true, 18.5f, 18.1f), detection(300, 100, 100, 80, true, 18.5f, 18.1f)};
-  writeLog(tmp / "run.lcmlog", {f});
+  writeLog(tmp / "run.lcmlog", {frame(3, {detection(100, 100, 100, 80, true, 18.5f, 18.1f),
+                                          detection(300, 100, 100, 80, true, 18.5f, 18.1f)})});
   // All three count without --visible: TP 2, FN 1.
   EXPECT_NE(squeeze(run(base() + " 2>&1")).find("stixel + SNV 3 2 0 1 1.000 0.667 0.800"), std::string::npos);
   // With it only the visible car counts, and the box on the hidden one is neither TP nor FP.

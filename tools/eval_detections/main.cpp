@@ -25,8 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "detection_eval.hpp"
-#include "distance_accuracy.hpp"
+#include "frame_evaluation.hpp"
 #include "json_writer.hpp"
 #include "log_decode.hpp"
 #include "miss_causes.hpp"
@@ -143,23 +142,9 @@ int main(int argc, char** argv) {
           continue;
         }
         const auto labels = readKittiLabels(label_path);
-        std::vector<EvalBox> hyps, validated;
-        std::vector<float> hyp_near;
-        std::vector<const detection_t*> validated_det;
-        for (const auto& d : det.detections) {
-          const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
-          hyps.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
-          hyp_near.push_back(d.nearest_z_m);
-          if (d.kept) validated.push_back(b), validated_det.push_back(&d);
-        }
-        const auto all_matches = matchDetections(hyps, labels, o.params);
-        all.add(countMatches(all_matches, labels, o.params));
-        const auto matches = matchDetections(validated, labels, o.params);
-        kept.add(countMatches(matches, labels, o.params));
-        misses.addFrame(labels, o.params, hyps, hyp_near, all_matches, matches);
-        for (size_t k = 0; k < matches.size(); ++k)
-          if (matches[k].outcome == MatchOutcome::TruePositive)
-            depth.add(labels[matches[k].label], validated_det[k]->z_m, validated_det[k]->nearest_z_m);
+        const FrameEvaluation e = evaluateDetections(det, labels, o.params, depth, misses);
+        all.add(e.all);
+        kept.add(e.kept);
         ++frames;
       } else if (decodeEvent(*e, disp)) {
         stage_ms["stereo_matcher"].push_back(disp.processing_ms);

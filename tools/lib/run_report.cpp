@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "distance_accuracy.hpp"
+#include "frame_evaluation.hpp"
 #include "frame_grid.hpp"
 #include "frame_render.hpp"
 #include "html_report.hpp"
@@ -187,23 +188,9 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
         if (const std::string path = labelFileFor(options.labels_dir, f.frame_id); !path.empty()) {
           try {
             const auto labels = readKittiLabels(path);
-            std::vector<EvalBox> all, kept;
-            std::vector<float> all_near;
-            std::vector<const detection_t*> kept_det;
-            for (const auto& d : f.detections->detections) {
-              const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
-              all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});
-              all_near.push_back(d.nearest_z_m);
-              if (d.kept) kept.push_back(b), kept_det.push_back(&d);
-            }
-            const auto all_matches = matchDetections(all, labels, options.eval);
-            r.eval_all = countMatches(all_matches, labels, options.eval);
-            const auto matches = matchDetections(kept, labels, options.eval);
-            r.eval_kept = countMatches(matches, labels, options.eval);
-            misses.addFrame(labels, options.eval, all, all_near, all_matches, matches);
-            for (size_t k = 0; k < matches.size(); ++k)
-              if (matches[k].outcome == MatchOutcome::TruePositive)
-                depth.add(labels[matches[k].label], kept_det[k]->z_m, kept_det[k]->nearest_z_m);
+            const FrameEvaluation e = evaluateDetections(*f.detections, labels, options.eval, depth, misses);
+            r.eval_all = e.all;
+            r.eval_kept = e.kept;
             r.objects = r.eval_all.objects;
             r.labelled = true;
           } catch (const std::exception&) {
