@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
+
 #include "v_disparity.hpp"
 
 namespace nerv::stixel {
@@ -67,16 +71,28 @@ OccupancyGrid buildOccupancy(const cv::Mat& disparity, const StereoCamera& cam,
     const float u = std::min(hi[v], p.max_disparity_px);
     if (!(l < u)) continue;
     const float* row = disparity.ptr<float>(v);
-    for (int x = 0; x < disparity.cols; ++x) {
-      const float d = row[x];
-      if (!(d > l && d < u)) continue;  // also drops NaN
-      const int b = static_cast<int>(d);
+    auto vote = [&](int x) {
+      const int b = static_cast<int>(row[x]);
       max_bin = std::max(max_bin, b);
       const size_t i = static_cast<size_t>(x / cw) * grid.bins + b;
       ++count[i];
       top[i] = std::min(top[i], v);  // rows ascend: the first pixel sets it
       bottom[i] = v;                 // and the last one this
+    };
+    int x = 0;
+#ifdef __AVX2__
+    // Most pixels of a row are road or sky: eight are tested at once and only
+    // the obstacle pixels among them vote, in column order.
+    const __m256 v_l = _mm256_set1_ps(l), v_u = _mm256_set1_ps(u);
+    for (; x + 8 <= disparity.cols; x += 8) {
+      const __m256 d = _mm256_loadu_ps(row + x);
+      unsigned m = static_cast<unsigned>(_mm256_movemask_ps(
+          _mm256_and_ps(_mm256_cmp_ps(d, v_l, _CMP_GT_OQ), _mm256_cmp_ps(d, v_u, _CMP_LT_OQ))));
+      for (; m; m &= m - 1) vote(x + __builtin_ctz(m));
     }
+#endif
+    for (; x < disparity.cols; ++x)
+      if (row[x] > l && row[x] < u) vote(x);  // also drops NaN
   }
   // count pixels of a strip w px wide at disparity d span count/w rows, and a row
   // at depth Z = fx*B/d is Z/fy metres high: filled = count*fx*B/(w*fy*d).
@@ -139,7 +155,14 @@ std::vector<int> solveFreeSpace(const OccupancyGrid& grid, const FreeSpaceParams
   std::vector<int> back(static_cast<size_t>(grid.strips) * (n + 1));
 
   auto dataCost = [&](int s, std::vector<float>& c) {
-    for (int i = 0; i < n; ++i) score[i] = obstacleScore(grid, s, i + k0);
+    // Bins whose window holds no pixel score 0: only the strip's occupied span is scored.
+    int first = grid.end_bin, last = -1;
+    for (int k = k0; k < grid.end_bin; ++k)
+      if (grid.filled_m[grid.index(s, k)] > 0) first = std::min(first, k), last = k;
+    for (int i = 0; i < n; ++i) {
+      const int k = i + k0, hw = obstacleHalfWindow(k);
+      score[i] = k + hw < first || k - hw > last ? 0.0f : obstacleScore(grid, s, k);
+    }
     nearer[n] = 0;  // nearer[i] = max score over bins >= i
     for (int i = n - 1; i >= 0; --i) nearer[i] = std::max(nearer[i + 1], score[i]);
     for (int i = 0; i < n; ++i) {

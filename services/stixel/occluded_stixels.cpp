@@ -5,12 +5,19 @@
 
 #include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
+#include "obstacle_map.hpp"
 
 namespace nerv::stixel {
 
 std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const StereoCamera& cam,
                                            const GroundModel& g, const std::vector<Stixel>& first,
                                            const StixelExtractionParams& p) {
+  return extractOccludedStixels(disparity, obstacleDisparityMap(disparity, g, p.free_space), cam, g, first, p);
+}
+
+std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const cv::Mat& obstacle_map,
+                                           const StereoCamera& cam, const GroundModel& g,
+                                           const std::vector<Stixel>& first, const StixelExtractionParams& p) {
   const FreeSpaceParams& fs = p.free_space;
   const double fb = cam.fx * cam.baseline_m;
   const float min_d = static_cast<float>(fb / fs.max_distance_m);
@@ -28,12 +35,10 @@ std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const Stere
     if (d_max <= min_d) continue;
     hist.assign(static_cast<size_t>(std::ceil(d_max)) + 2, 0);
     for (int v = 0; v <= bottom; ++v) {
-      const float* row = disparity.ptr<float>(v);
+      const float* row = obstacle_map.ptr<float>(v);  // NaN off the obstacle heights
       for (int u = u0; u < u1; ++u) {
         const float d = row[u];
-        if (!(d > min_d && d < d_max)) continue;
-        const float hg = heightAboveGround(g, static_cast<float>(v), d);
-        if (hg > fs.ground_tolerance_m && hg < fs.max_height_above_ground_m) ++hist[static_cast<size_t>(d)];
+        if (d > min_d && d < d_max) ++hist[static_cast<size_t>(d)];
       }
     }
     // Mode over k +- obstacleHalfWindow(k), as the occupancy does.
@@ -74,7 +79,7 @@ std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const Stere
     const float filled_m = static_cast<float>(best_n * fb / ((u1 - u0) * cam.fy * d_mode));
     if (filled_m < fs.min_obstacle_height_m) continue;
 
-    const float d = medianObstacleDisparity(disparity, g, fs, u0, u1, 0, bottom, dlo, std::min(dhi, d_max), samples);
+    const float d = medianInRange(obstacle_map, u0, u1, 0, bottom, dlo, std::min(dhi, d_max), samples);
     if (d <= 0.0f) continue;
     Stixel st;
     if (stixelAtDisparity(disparity, cam, g, p, u0, u1, d, bottom, st)) out.push_back(st);

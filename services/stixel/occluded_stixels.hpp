@@ -23,5 +23,9 @@ namespace nerv::stixel {
 std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const StereoCamera& cam,
                                            const GroundModel& ground, const std::vector<Stixel>& first,
                                            const StixelExtractionParams& p);
+// The same, given the frame's obstacleDisparityMap (obstacle_map.hpp) for p.free_space.
+std::vector<Stixel> extractOccludedStixels(const cv::Mat& disparity, const cv::Mat& obstacle_map,
+                                           const StereoCamera& cam, const GroundModel& ground,
+                                           const std::vector<Stixel>& first, const StixelExtractionParams& p);
 
 }  // namespace nerv::stixel

@@ -3,7 +3,9 @@
 #include "stixel_estimator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "free_space.hpp"
@@ -11,6 +13,7 @@
 #include "ground_line_fit.hpp"
 #include "hypothesis_grouping.hpp"
 #include "lone_posts.hpp"
+#include "obstacle_map.hpp"
 #include "occluded_plates.hpp"
 #include "occluded_stixels.hpp"
 #include "sign_plates.hpp"
@@ -107,7 +110,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
 
   StixelResult result;
   if (disparity.empty()) return result;
+#ifdef NERV_STIXEL_PROFILE
+  auto t_prev = std::chrono::steady_clock::now();
+#define STIXEL_MARK(what) { auto t_now = std::chrono::steady_clock::now(); std::fprintf(stderr, "%s %.3f ms  ", what, std::chrono::duration<double, std::milli>(t_now - t_prev).count()); t_prev = t_now; }
+#else
+#define STIXEL_MARK(what)
+#endif
   result.ground = estimateGround(disparity, cam, params, prior);
+  STIXEL_MARK("ground");
   if (!result.ground.valid) return result;
 
   StixelExtractionParams ep;
@@ -129,8 +139,12 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   ep.top_min_resume_m = params.top_min_resume_m;
 
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
+  STIXEL_MARK("occupancy");
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
-  result.stixels = extractStixels(disparity, cam, result.ground, boundary, ep);
+  STIXEL_MARK("free_space");
+  const cv::Mat obstacle_map = obstacleDisparityMap(disparity, result.ground, fs);
+  result.stixels = extractStixels(disparity, obstacle_map, cam, result.ground, boundary, ep);
+  STIXEL_MARK("stixels");
   SignPlateParams sp;
   sp.max_foot_height_m = params.sign_plate_max_foot_height_m;
   sp.min_plate_bottom_m = params.sign_plate_min_bottom_m;
@@ -147,8 +161,10 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   lp.side_strips = params.lone_post_side_strips;
   const std::vector<Stixel> lone = findLonePosts(result.stixels, cam, lp);
   posts.insert(posts.end(), lone.begin(), lone.end());
+  STIXEL_MARK("plates+lone");
   if (params.occluded_stixels) {
-    std::vector<Stixel> behind = extractOccludedStixels(disparity, cam, result.ground, result.stixels, ep);
+    std::vector<Stixel> behind = extractOccludedStixels(disparity, obstacle_map, cam, result.ground, result.stixels, ep);
+    STIXEL_MARK("occluded");
     OccludedPlateParams op;
     op.max_plate_top_m = params.occluded_plate_max_top_m;
     op.max_distance_m = params.occluded_plate_max_distance_m;
@@ -160,6 +176,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
     result.stixels.insert(result.stixels.end(), behind.begin(), behind.end());
     std::stable_sort(result.stixels.begin(), result.stixels.end(),
                      [](const Stixel& a, const Stixel& b) { return a.u < b.u; });
+    STIXEL_MARK("occluded_plates");
   }
 
   GroupingParams gp;
@@ -259,6 +276,10 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.occluded_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.occluded_sides.ground_tolerance_m = params.ground_tolerance_m;
   result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground, &posts});
+  STIXEL_MARK("grouping");
+#ifdef NERV_STIXEL_PROFILE
+  std::fprintf(stderr, "\n");
+#endif
   return result;
 }
 

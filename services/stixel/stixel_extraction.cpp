@@ -2,11 +2,67 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
 
 #include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
+#include "obstacle_map.hpp"
 
 namespace nerv::stixel {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// One row of a strip in the top search: valid pixels (a finite disparity above
+// road_max), matches (within tol of d), misses, and misses that are no near
+// miss (not in [near_lo, d)).
+struct RowCounts {
+  int matches = 0, valid = 0, misses = 0, far_misses = 0;
+};
+
+RowCounts countRow(const float* row, int u0, int u1, float road_max, float d, float tol, float near_lo) {
+  RowCounts c;
+#ifdef __AVX2__
+  // Eight columns per step, the strip's lanes masked (masked lanes load 0, which
+  // is no valid disparity); the same comparisons as the scalar loop below.
+  const __m256 v_road = _mm256_set1_ps(road_max), v_d = _mm256_set1_ps(d), v_tol = _mm256_set1_ps(tol);
+  const __m256 v_near = _mm256_set1_ps(near_lo), v_zero = _mm256_setzero_ps(), v_inf = _mm256_set1_ps(kInf);
+  const __m256 v_abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int u = u0; u < u1; u += 8) {
+    const __m256i in_strip = _mm256_cmpgt_epi32(_mm256_set1_epi32(u1 - u), lanes);
+    const __m256 x = _mm256_maskload_ps(row + u, in_strip);
+    const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(x, v_zero, _CMP_GT_OQ), _mm256_cmp_ps(x, v_inf, _CMP_LT_OQ)),
+                                    _mm256_cmp_ps(x, v_road, _CMP_GT_OQ));
+    const __m256 close = _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(x, v_d), v_abs), v_tol, _CMP_LE_OQ);
+    const __m256 near = _mm256_and_ps(_mm256_cmp_ps(x, v_d, _CMP_LT_OQ), _mm256_cmp_ps(x, v_near, _CMP_GE_OQ));
+    const __m256 miss = _mm256_andnot_ps(close, ok);
+    c.valid += __builtin_popcount(_mm256_movemask_ps(ok));
+    c.matches += __builtin_popcount(_mm256_movemask_ps(_mm256_and_ps(ok, close)));
+    c.misses += __builtin_popcount(_mm256_movemask_ps(miss));
+    c.far_misses += __builtin_popcount(_mm256_movemask_ps(_mm256_andnot_ps(near, miss)));
+  }
+#else
+  for (int u = u0; u < u1; ++u) {
+    const float x = row[u];
+    if (!(x > 0.0f && x < kInf && x > road_max)) continue;
+    ++c.valid;
+    if (std::abs(x - d) <= tol) {
+      ++c.matches;
+    } else {
+      ++c.misses;
+      if (!(x < d && x >= near_lo)) ++c.far_misses;
+    }
+  }
+#endif
+  return c;
+}
+
+}  // namespace
 
 int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_tolerance_m,
                   int u0, int u1, int foot_row, int limit_row, float d, const TopSearch& t) {
@@ -25,18 +81,10 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
     const float* row = disparity.ptr<float>(v);
     // Road at this row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
     const float road_max = h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m);
-    int matches = 0, valid = 0;
-    for (int u = u0; u < u1; ++u) {
-      const float x = row[u];
-      if (!(x > 0.0f) || !std::isfinite(x) || x <= road_max) continue;
-      ++valid;
-      if (std::abs(x - d) <= t.tolerance_px) {
-        ++sum, ++bsum, ++matches;
-      } else {
-        --sum;
-        if (!(x < d && x >= near_lo)) --bsum;
-      }
-    }
+    const RowCounts c = countRow(row, u0, u1, road_max, d, t.tolerance_px, near_lo);
+    const int matches = c.matches, valid = c.valid;
+    sum += c.matches - c.misses;
+    bsum += c.matches - c.far_misses;
     if (sum > best) best = sum, best_row = v;
     if (bridge) rows.push_back({bsum, matches, valid});
   }
@@ -113,6 +161,12 @@ bool stixelAtDisparity(const cv::Mat& disparity, const StereoCamera& cam, const 
 std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,
                                    const GroundModel& g, const std::vector<int>& boundary,
                                    const StixelExtractionParams& p) {
+  return extractStixels(disparity, obstacleDisparityMap(disparity, g, p.free_space), cam, g, boundary, p);
+}
+
+std::vector<Stixel> extractStixels(const cv::Mat& disparity, const cv::Mat& obstacle_map, const StereoCamera& cam,
+                                   const GroundModel& g, const std::vector<int>& boundary,
+                                   const StixelExtractionParams& p) {
   const FreeSpaceParams& fs = p.free_space;
   const int cw = std::max(1, fs.column_width_px);
   const int rows = disparity.rows;
@@ -134,7 +188,7 @@ std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera&
     // Robust disparity: median of the strip's obstacle pixels in the boundary window.
     const int v_from = std::clamp(static_cast<int>(std::floor(rowAtHeight(dhi, fs.max_height_above_ground_m))), 0, rows - 1);
     const int v_to = std::clamp(static_cast<int>(std::ceil(rowAtHeight(dlo, 0.0f))), 0, rows - 1);
-    const float d = medianObstacleDisparity(disparity, g, fs, u0, u1, v_from, v_to, dlo, dhi, samples);
+    const float d = medianInRange(obstacle_map, u0, u1, v_from, v_to, dlo, dhi, samples);
     if (d <= 0.0f) continue;
     Stixel st;
     if (stixelAtDisparity(disparity, cam, g, p, u0, u1, d, rows - 1, st)) out.push_back(st);

@@ -62,5 +62,9 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& ground, float gro
 std::vector<Stixel> extractStixels(const cv::Mat& disparity, const StereoCamera& cam,
                                    const GroundModel& ground, const std::vector<int>& boundary,
                                    const StixelExtractionParams& p);
+// The same, given the frame's obstacleDisparityMap (obstacle_map.hpp) for p.free_space.
+std::vector<Stixel> extractStixels(const cv::Mat& disparity, const cv::Mat& obstacle_map, const StereoCamera& cam,
+                                   const GroundModel& ground, const std::vector<int>& boundary,
+                                   const StixelExtractionParams& p);
 
 }  // namespace nerv::stixel

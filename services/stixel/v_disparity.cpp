@@ -15,10 +15,11 @@ VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px,
   vd.count.assign(static_cast<size_t>(vd.rows) * vd.bins, 0);
   vd.sum_d.assign(static_cast<size_t>(vd.rows) * vd.bins, 0.0f);
   int valid = 0;
-  // Four rows at a time, interleaved per column: neighbouring road pixels of one
+  // Eight rows at a time, interleaved per column: neighbouring road pixels of one
   // row fall into the same cell, and a single row's increments would form one
-  // long store-to-load dependency chain; four rows give four independent ones.
-  constexpr int kRows = 4;
+  // long store-to-load dependency chain; eight rows give eight independent ones
+  // (each row's cells still add its pixels in column order).
+  constexpr int kRows = 8;
   for (int v0 = 0; v0 < disparity.rows; v0 += kRows) {
     const int nr = std::min(kRows, disparity.rows - v0);
     const float* row[kRows];
