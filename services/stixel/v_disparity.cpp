@@ -33,12 +33,14 @@ VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px,
     }
     for (int u = 0; u < disparity.cols; u += column_step) {
       for (int r = 0; r < nr; ++r) {
+        // Without a branch (invalid pixels are scattered): an invalid pixel adds
+        // 0 to bin 0, which changes neither its count nor its sum.
         const float d = row[r][u];
-        if (!validDisparity(d, max_disparity_px)) continue;
-        const int k = static_cast<int>(d);
-        ++cnt[r][k];
-        sum[r][k] += d;
-        ++valid;
+        const bool ok = validDisparity(d, max_disparity_px);
+        const int k = ok ? static_cast<int>(d) : 0;
+        cnt[r][k] += ok;
+        sum[r][k] += ok ? d : 0.0f;
+        valid += ok;
       }
     }
   }
