@@ -2,7 +2,10 @@
 // hypotheses) against the plain per-column reference (stixel_reference.hpp) on
 // the same disparities, measured in the same run.
 //   build/bin/bench_stixel [runs]
-// Uses SGBM disparities of ../shared/data/kitti_raw_0926_seq when present,
+// Uses the disparities of ../shared/data/kitti_raw_0926_seq when present, twice:
+// OpenCV SGBM's (the figure of earlier rounds) and then nerv_sgm's as the
+// stixel service receives them (the pipeline's default matcher, through the
+// DISPARITY message's 1/256 px; denser, so more obstacle pixels to scan);
 // otherwise rendered synthetic scenes.
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -16,6 +19,8 @@
 #include <vector>
 
 #include "dataset.hpp"
+#include "message_convert.hpp"
+#include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
 #include "stixel_reference.hpp"
 #include "synthetic_road_scene.hpp"
@@ -41,14 +46,29 @@ cv::Mat sgbm(const std::string& left, const std::string& right) {
   return d;
 }
 
-std::vector<Input> loadInputs() {
+// nerv_sgm with the pipeline's defaults, through the wire's fixed point.
+cv::Mat nervSgm(stereo::StereoMatcher& m, const std::string& left, const std::string& right) {
+  cv::Mat d, out;
+  m.compute(cv::imread(left, cv::IMREAD_GRAYSCALE), cv::imread(right, cv::IMREAD_GRAYSCALE), d);
+  disparity_t msg;
+  encodeDisparity(d, "u16le", msg);
+  cv::Mat(msg.height, msg.width, CV_16U, msg.data.data()).convertTo(out, CV_32F, 1.0 / kDisparityScale);
+  return out;
+}
+
+// KITTI 0926 with SGBM's disparities (nerv_sgm = false) or nerv_sgm's; empty without the data.
+std::vector<Input> loadKitti(bool nerv_sgm) {
   std::vector<Input> in;
   const std::string dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
-  if (std::filesystem::exists(dir)) {
-    for (const DatasetFrame& f : openDataset(dir).frames)
-      in.push_back({f.name, sgbm(f.left_path, f.right_path), f.camera});
-    return in;
-  }
+  if (!std::filesystem::exists(dir)) return in;
+  std::unique_ptr<stereo::StereoMatcher> m = stereo::StereoMatcher::create(stereo::Params{});
+  for (const DatasetFrame& f : openDataset(dir).frames)
+    in.push_back({f.name, nerv_sgm ? nervSgm(*m, f.left_path, f.right_path) : sgbm(f.left_path, f.right_path), f.camera});
+  return in;
+}
+
+std::vector<Input> loadSynthetic() {
+  std::vector<Input> in;
   const StereoCamera cam = kittiLikeCamera();
   for (int i = 0; i < 4; ++i) {
     RoadScene s;
@@ -71,15 +91,10 @@ double medianMs(int runs, F&& f) {
   return ms[ms.size() / 2];
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 25;
-  const std::vector<Input> inputs = loadInputs();
-  const Params params;
+// Times every input; prints a row per frame and returns the median line.
+std::string timeInputs(const std::vector<Input>& inputs, int runs, const Params& params, size_t& sink) {
   std::printf("frame        size       fast_ms  reference_ms  ratio  stixels  hypotheses\n");
   std::vector<double> fast_all, ref_all;
-  size_t sink = 0;
   for (const Input& in : inputs) {
     StixelResult res;
     const double fast = medianMs(runs, [&] { res = estimateStixels(in.disparity, in.cam, params); });
@@ -97,8 +112,29 @@ int main(int argc, char** argv) {
   std::sort(fast_all.begin(), fast_all.end());
   std::sort(ref_all.begin(), ref_all.end());
   const double f = fast_all[fast_all.size() / 2], r = ref_all[ref_all.size() / 2];
-  std::printf("median over %zu frames (%d runs each): estimateStixels %.3f ms/frame (%.0f fps), "
-              "per-column reference %.3f ms/frame, ratio %.1fx\n",
-              inputs.size(), runs, f, 1000.0 / f, r, r / f);
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "median over %zu frames (%d runs each): estimateStixels %.3f ms/frame (%.0f fps), "
+                "per-column reference %.3f ms/frame, ratio %.1fx",
+                inputs.size(), runs, f, 1000.0 / f, r, r / f);
+  return line;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 25;
+  const Params params;
+  size_t sink = 0;
+  const std::vector<Input> sgbm_inputs = loadKitti(false);
+  if (sgbm_inputs.empty()) {
+    std::printf("%s\n", timeInputs(loadSynthetic(), runs, params, sink).c_str());
+    return 0;
+  }
+  std::printf("disparity: OpenCV SGBM (as in earlier rounds)\n");
+  const std::string sgbm_line = timeInputs(sgbm_inputs, runs, params, sink);
+  std::printf("%s\n\ndisparity: nerv_sgm through the DISPARITY message (the pipeline's default)\n", sgbm_line.c_str());
+  const std::string nerv_line = timeInputs(loadKitti(true), runs, params, sink);
+  std::printf("%s\n\nSGBM:     %s\nnerv_sgm: %s\n", nerv_line.c_str(), sgbm_line.c_str(), nerv_line.c_str());
   return sink == 0 ? 0 : 0;
 }
