@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -46,13 +47,15 @@ cv::Mat sgbm(const std::string& left, const std::string& right) {
   return d;
 }
 
-// nerv_sgm with the pipeline's defaults, through the wire's fixed point.
+// nerv_sgm with the pipeline's defaults, encoded and decoded as the DISPARITY
+// message carries it to the stixel service.
 cv::Mat nervSgm(stereo::StereoMatcher& m, const std::string& left, const std::string& right) {
   cv::Mat d, out;
   m.compute(cv::imread(left, cv::IMREAD_GRAYSCALE), cv::imread(right, cv::IMREAD_GRAYSCALE), d);
   disparity_t msg;
   encodeDisparity(d, "u16le", msg);
-  cv::Mat(msg.height, msg.width, CV_16U, msg.data.data()).convertTo(out, CV_32F, 1.0 / kDisparityScale);
+  const std::string error = decodeDisparity(msg, out);
+  if (!error.empty()) throw std::runtime_error("bench_stixel: " + left + ": " + error);
   return out;
 }
 

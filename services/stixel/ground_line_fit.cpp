@@ -82,22 +82,8 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   for (int i = 0; i < na; ++i) inv_a[i] = 1.0 / (a_min + (a_max - a_min) * i / (na - 1));
   for (const Cell& c : cells) {
     const double base = c.v - vh_min + 0.5;  // + 0.5: truncation below rounds
-    auto bin = [&](int i) { return base - c.d * inv_a[i]; };
-    // inv_a falls with i, so for d >= 0 the bin rises with i (rounding keeps
-    // the order): the slopes voting inside [0, nh) are one run, found by bisection.
-    int i0 = 0, i1 = na;
-    if (c.d >= 0) {
-      i0 = static_cast<int>(std::partition_point(inv_a.begin(), inv_a.end(), [&](const double& ia) {
-                              return !(base - c.d * ia >= 0);
-                            }) - inv_a.begin());
-      i1 = static_cast<int>(std::partition_point(inv_a.begin() + i0, inv_a.end(), [&](const double& ia) {
-                              return base - c.d * ia < nh;
-                            }) - inv_a.begin());
-    }
-    // One slope more on each side, and the test kept, in case the compiler
-    // rounds the two expressions differently.
-    for (int i = std::max(0, i0 - 1), end = std::min(na, i1 + 1); i < end; ++i) {
-      const double x = bin(i);
+    for (int i = 0; i < na; ++i) {
+      const double x = base - c.d * inv_a[i];
       if (x >= 0 && x < nh) acc[static_cast<size_t>(i) * nh + static_cast<int>(x)] += c.w;
     }
   }

@@ -82,11 +82,10 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
     // Road at this row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
     const float road_max = h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m);
     const RowCounts c = countRow(row, u0, u1, road_max, d, t.tolerance_px, near_lo);
-    const int matches = c.matches, valid = c.valid;
     sum += c.matches - c.misses;
     bsum += c.matches - c.far_misses;
     if (sum > best) best = sum, best_row = v;
-    if (bridge) rows.push_back({bsum, matches, valid});
+    if (bridge) rows.push_back({bsum, c.matches, c.valid});
   }
   if (!bridge) return best_row;
   // The bridged argmax at most max_extension_rows above the plain top ...

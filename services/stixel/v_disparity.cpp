@@ -15,11 +15,10 @@ VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px,
   vd.count.assign(static_cast<size_t>(vd.rows) * vd.bins, 0);
   vd.sum_d.assign(static_cast<size_t>(vd.rows) * vd.bins, 0.0f);
   int valid = 0;
-  // Eight rows at a time, interleaved per column: neighbouring road pixels of one
+  // Four rows at a time, interleaved per column: neighbouring road pixels of one
   // row fall into the same cell, and a single row's increments would form one
-  // long store-to-load dependency chain; eight rows give eight independent ones
-  // (each row's cells still add its pixels in column order).
-  constexpr int kRows = 8;
+  // long store-to-load dependency chain; four rows give four independent ones.
+  constexpr int kRows = 4;
   for (int v0 = 0; v0 < disparity.rows; v0 += kRows) {
     const int nr = std::min(kRows, disparity.rows - v0);
     const float* row[kRows];
@@ -33,14 +32,12 @@ VDisparity computeVDisparity(const cv::Mat& disparity, float max_disparity_px,
     }
     for (int u = 0; u < disparity.cols; u += column_step) {
       for (int r = 0; r < nr; ++r) {
-        // Without a branch (invalid pixels are scattered): an invalid pixel adds
-        // 0 to bin 0, which changes neither its count nor its sum.
         const float d = row[r][u];
-        const bool ok = validDisparity(d, max_disparity_px);
-        const int k = ok ? static_cast<int>(d) : 0;
-        cnt[r][k] += ok;
-        sum[r][k] += ok ? d : 0.0f;
-        valid += ok;
+        if (!validDisparity(d, max_disparity_px)) continue;
+        const int k = static_cast<int>(d);
+        ++cnt[r][k];
+        sum[r][k] += d;
+        ++valid;
       }
     }
   }
