@@ -25,7 +25,10 @@
 //   - ground-model and SNV pose against DIR/extrinsics.txt (or --extrinsics);
 //   - ms per frame of each stage.
 // --visible counts only labels with occlusion < 2 and truncation < 0.5 (others
-// are ignored: neither hit nor miss). --set overrides a config key, e.g.
+// are ignored: neither hit nor miss). --max-distance M ignores the labels
+// farther than M and the hypotheses farther than M (z_m) that match no counted
+// label (tools/lib/detection_eval.hpp); --count-far-detections counts those
+// hypotheses as false positives, as before 2026-12-02's sixth session. --set overrides a config key, e.g.
 // --set validator.max_error_fraction=0.5 (repeatable). --true-disparity feeds
 // the ground truth (DIR/disp_occ_0) instead of the matcher's disparity: an
 // oracle for what the matcher costs; --oracle MODE takes away one kind of the
@@ -68,6 +71,7 @@ struct Options {
   std::string data, labels, config, cache = "/tmp/nerv_bench_cache", extrinsics, overlay;
   std::vector<std::pair<std::string, std::string>> sets;
   float max_distance_m = 1e9f;
+  bool count_far_detections = false;  // unmatched detections beyond max_distance_m are false positives
   int frames = 0;
   bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
   std::string oracle;  // "", truth, truth-at-valid, no-near-outliers, no-far-outliers, no-outliers
@@ -77,7 +81,7 @@ struct Options {
   std::fprintf(stderr, "bench_detection: %s\n", why.c_str());
   std::fprintf(stderr,
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
-               "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible]\n"
+               "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible] [--count-far-detections]\n"
                "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
                "       [--true-disparity | --oracle MODE]\n");
   std::exit(2);
@@ -94,6 +98,7 @@ Options parse(int argc, char** argv) {
     if (a == "--data") o.data = value();
     else if (a == "--labels") o.labels = value();
     else if (a == "--max-distance") o.max_distance_m = std::stof(value());
+    else if (a == "--count-far-detections") o.count_far_detections = true;
     else if (a == "--frames") o.frames = std::stoi(value());
     else if (a == "--config") o.config = value();
     else if (a == "--cache") o.cache = value();
@@ -276,7 +281,11 @@ std::map<long, TruePose> readExtrinsics(const std::string& path) {
   return poses;
 }
 
-EvalBox boxOf(const Hypothesis& h) { return detectionBox(h.box.x, h.box.y, h.box.w, h.box.h); }
+EvalBox boxOf(const Hypothesis& h) {
+  EvalBox b = detectionBox(h.box.x, h.box.y, h.box.w, h.box.h);
+  b.z = h.z_m;
+  return b;
+}
 
 // Per-frame listing: true positive, false positive, or ignored (DontCare,
 // an invisible or too far label).
@@ -339,6 +348,7 @@ int main(int argc, char** argv) {
     EvalParams ep;
     ep.max_distance_m = o.max_distance_m;
     ep.visible_only = o.visible;
+    ep.limit_detections = !o.count_far_detections;
     EvalCounts all, kept;
     DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
@@ -615,7 +625,10 @@ int main(int argc, char** argv) {
     else if (!o.oracle.empty()) std::printf("disparity: the matcher's with the oracle '%s' applied\n", o.oracle.c_str());
     if (!o.labels.empty()) {
       std::printf("IoU > %.2f%s%s\n", ep.min_iou,
-                  o.max_distance_m < 1e8 ? (", labels within " + std::to_string(int(o.max_distance_m)) + " m").c_str() : "",
+                  o.max_distance_m < 1e8 ? (", labels within " + std::to_string(int(o.max_distance_m)) + " m" +
+                                             (o.count_far_detections ? " (all hypotheses counted)"
+                                                                     : " (unmatched hypotheses beyond it ignored)")).c_str()
+                                        : "",
                   o.visible ? ", occlusion < 2 and truncation < 0.5 only" : "");
       std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})

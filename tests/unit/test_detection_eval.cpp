@@ -83,6 +83,43 @@ TEST(toolsDetectionEval, FarAndUncountedObjectsAreIgnored) {
   EXPECT_EQ(c.ignored, 2);
 }
 
+TEST(toolsDetectionEval, TheDistanceLimitIgnoresUnmatchedDetectionsBeyondIt) {
+  // Labels: a car at 35 m (counted) and one at 45 m (beyond the limit). Boxes:
+  // a hit on the 35 m car whose own depth reads 41 m (still a hit), a loose box
+  // at 44 m on the far car (IoU 0.25: matches nothing), one at 50 m in empty
+  // space, one at 39 m in empty space, and one of unknown depth (0).
+  EvalParams p;
+  p.max_distance_m = 40;
+  const std::vector<KittiLabel> labels = {label("Car", 0, 0, 9, 9, 35), label("Car", 100, 0, 109, 9, 45)};
+  std::vector<EvalBox> boxes = {{0, 0, 10, 10}, {105, 0, 115, 10}, {200, 0, 210, 10}, {300, 0, 310, 10},
+                                {400, 0, 410, 10}};
+  const float z[] = {41, 44, 50, 39, 0};
+  for (size_t i = 0; i < boxes.size(); ++i) boxes[i].z = z[i];
+  const auto m = matchDetections(boxes, labels, p);
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_EQ(m[0].outcome, MatchOutcome::TruePositive);  // matching comes first, whatever its depth
+  EXPECT_EQ(m[1].outcome, MatchOutcome::Ignored);        // beyond 40 m and matching no counted object
+  EXPECT_EQ(m[2].outcome, MatchOutcome::Ignored);
+  EXPECT_EQ(m[3].outcome, MatchOutcome::FalsePositive);  // within the limit
+  EXPECT_EQ(m[4].outcome, MatchOutcome::FalsePositive);  // depth unknown: counted
+  const EvalCounts c = countMatches(m, labels, p);
+  EXPECT_EQ(c.objects, 1);
+  EXPECT_EQ(c.tp, 1);
+  EXPECT_EQ(c.fp, 2);
+  EXPECT_EQ(c.ignored, 2);
+  // The convention before (limit_detections = false): every unmatched box beyond the limit is a false positive.
+  p.limit_detections = false;
+  const EvalCounts old = evaluateFrame(boxes, labels, p);
+  EXPECT_EQ(old.tp, 1);
+  EXPECT_EQ(old.fp, 4);
+  // Without a limit nothing is beyond it: the far car counts (missed, its box is loose).
+  EvalParams none;
+  const EvalCounts all = evaluateFrame(boxes, labels, none);
+  EXPECT_EQ(all.objects, 2);
+  EXPECT_EQ(all.fn, 1);
+  EXPECT_EQ(all.fp, 4);
+}
+
 TEST(toolsDetectionEval, MatchesNameTheLabelOfEachTruePositive) {
   // detections: a hit on label 1, a box in empty space, one on a DontCare area
   KittiLabel dc = label("DontCare", 200, 0, 240, 40);

@@ -170,3 +170,23 @@ TEST_F(toolsEvalDetectionsCli, VisibleIgnoresHiddenObjectsAndTheBoxesOnThem) {
   EXPECT_NE(text.find("stixel + SNV 1 1 0 0 1.000 1.000 1.000"), std::string::npos) << text;
   EXPECT_NE(run(base() + " --visible --json").find("\"visible_only\":true"), std::string::npos);
 }
+
+TEST_F(toolsEvalDetectionsCli, DistanceLimitIgnoresUnmatchedDetectionsBeyondIt) {
+  // A car at 20 m found, a car at 50 m (beyond --max-distance 40) with a loose box
+  // at 48 m on it, and a kept box at 60 m on nothing.
+  std::ofstream(tmp / "labels" / "000004.txt")
+      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
+      << "Car 0.00 0 -1.57 300.00 100.00 339.00 129.00 1.50 1.80 4.00 2.00 1.65 50.00 -1.5708\n";
+  writeLog(tmp / "run.lcmlog", {frame(4, {detection(100, 100, 100, 80, true, 18.5f, 18.1f),
+                                          detection(320, 100, 40, 30, true, 48.0f, 47.5f),
+                                          detection(700, 100, 30, 30, true, 60.0f, 59.0f)})});
+  // Both far boxes count neither way by default ...
+  const std::string text = squeeze(run(base() + " --max-distance 40 2>&1"));
+  EXPECT_NE(text.find("distance-limited (objects and unmatched detections)"), std::string::npos) << text;
+  EXPECT_NE(text.find("stixel + SNV 1 1 0 0 1.000 1.000 1.000"), std::string::npos) << text;
+  EXPECT_NE(run(base() + " --max-distance 40 --json").find("\"far_detections_ignored\":true"), std::string::npos);
+  // ... and are false positives with --count-far-detections.
+  const std::string old = squeeze(run(base() + " --max-distance 40 --count-far-detections 2>&1"));
+  EXPECT_NE(old.find("distance-limited (objects only)"), std::string::npos) << old;
+  EXPECT_NE(old.find("stixel + SNV 1 1 2 0 0.333 1.000 0.500"), std::string::npos) << old;
+}

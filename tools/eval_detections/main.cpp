@@ -1,12 +1,18 @@
 // nerv_eval_detections: the reference method's table from a recorded run.
 //
 //   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
-//                        [--min-iou 0.5] [--visible] [--extrinsics FILE] [--json]
+//                        [--min-iou 0.5] [--visible] [--count-far-detections]
+//                        [--extrinsics FILE] [--json]
 //
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
 // --visible ignores largely hidden objects (occluded 2) and those half outside
 // the image (truncated >= 0.5), as bench_detection --visible does.
+// --max-distance M limits both sides: objects farther than M are ignored, and
+// so are detections farther than M (their z_m) that match no counted object,
+// as the KITTI devkit ignores detections below its minimum height;
+// --count-far-detections counts those as false positives (the convention
+// before 2026-12-02's sixth session).
 // --extrinsics FILE (lines "frame pitch_deg roll_deg height_m") adds the pose
 // error of EXTRINSICS against it. The depth of the kept true positives (z_m at
 // the median stixel, nearest_z_m at the nearest part) is compared with the
@@ -60,6 +66,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--min-iou") o.params.min_iou = std::stof(value());
     else if (a == "--json") o.json = true;
     else if (a == "--visible") o.params.visible_only = true;
+    else if (a == "--count-far-detections") o.params.limit_detections = false;
     else if (a == "--classes") {
       std::stringstream list(value());
       for (std::string c; std::getline(list, c, ',');)
@@ -173,6 +180,7 @@ int main(int argc, char** argv) {
       j.field("frames", frames);
       j.field("frames_without_labels", unlabelled);
       j.field("visible_only", o.params.visible_only);
+      j.field("far_detections_ignored", o.params.limit_detections && o.params.max_distance_m < 1e8);
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel_only", all}, {"stixel_snv", kept}}) {
         j.key(name);
         j.beginObject();
@@ -233,7 +241,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s%s\n", frames, unlabelled,
-                o.params.min_iou, o.params.max_distance_m < 1e8 ? ", distance-limited" : "",
+                o.params.min_iou, o.params.max_distance_m < 1e8 ? (o.params.limit_detections ? ", distance-limited (objects and unmatched detections)"
+                                                                                   : ", distance-limited (objects only)")
+                                               : "",
                 o.params.visible_only ? ", occlusion < 2 and truncation < 0.5 only" : "");
     std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})

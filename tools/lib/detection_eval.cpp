@@ -62,7 +62,9 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
       out[k] = {MatchOutcome::TruePositive, counted[best]};
       continue;
     }
-    bool neutral = false;
+    // Beyond the distance limit (the detection's own depth) and matching no
+    // counted object: outside the evaluated range, like the objects there.
+    bool neutral = params.limit_detections && d.z > 0 && d.z > params.max_distance_m;
     for (const int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > params.min_iou;
     for (const int g : dontcare) {
       const EvalBox b = labelBox(labels[g]);

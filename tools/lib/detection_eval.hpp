@@ -4,7 +4,9 @@
 // the same object is a false positive. Detections lying mostly inside a
 // DontCare region, or matching an object that is ignored (class not counted,
 // or farther than max_distance_m), count neither way; ignored objects are not
-// misses.
+// misses. The distance limit cuts both sides, as the KITTI devkit's minimum
+// height does: a detection farther than max_distance_m (its own depth) that
+// matches no counted object counts neither way either.
 #pragma once
 
 #include <set>
@@ -18,12 +20,14 @@ namespace nerv {
 struct EvalBox {
   float x1 = 0, y1 = 0, x2 = 0, y2 = 0;
   float score = 0;
+  float z = 0;  // the detection's depth [m] (its z_m); 0 = unknown
 };
 
 struct EvalParams {
   float min_iou = 0.5f;
   float dontcare_min_overlap = 0.5f;  // share of the detection's area inside a DontCare box
-  float max_distance_m = 1e9f;        // labelled objects farther than this are ignored (z field)
+  float max_distance_m = 1e9f;        // labelled objects farther than this are ignored (z field) ...
+  bool limit_detections = true;       // ... and so are unmatched detections whose z is farther
   std::set<std::string> classes;      // counted types; empty = every type but DontCare
   bool visible_only = false;          // objects largely hidden (occluded 2) or half outside the image
                                       // (truncated >= 0.5) are ignored, as by `--visible`

@@ -8,8 +8,9 @@ FrameEvaluation evaluateDetections(const detections_t& detections, const std::ve
   std::vector<float> all_near;
   std::vector<const detection_t*> kept_det;
   for (const auto& d : detections.detections) {
-    const EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
-    all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f});  // stixel only: no scores, matched in their order
+    EvalBox b = detectionBox(d.x, d.y, d.w, d.h, d.score);
+    b.z = d.z_m;
+    all.push_back({b.x1, b.y1, b.x2, b.y2, 0.f, b.z});  // stixel only: no scores, matched in their order
     all_near.push_back(d.nearest_z_m);
     if (d.kept) kept.push_back(b), kept_det.push_back(&d);
   }

@@ -454,7 +454,11 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
     page.paragraph(cv::format("%d labelled frames, PASCAL matching at IoU > %.2f (tools/lib/detection_eval; DontCare "
                               "regions and ignored objects count neither way)%s.",
                               frames, options.eval.min_iou,
-                              options.eval.max_distance_m < 1e8f ? cv::format(", objects beyond %.0f m ignored", options.eval.max_distance_m).c_str() : ""));
+                              options.eval.max_distance_m < 1e8f
+                                  ? cv::format(options.eval.limit_detections
+                                                   ? ", objects and unmatched detections beyond %.0f m ignored"
+                                                   : ", objects beyond %.0f m ignored", options.eval.max_distance_m).c_str()
+                                  : ""));
     auto line = [](const char* name, const EvalCounts& c) {
       return std::vector<std::string>{name, std::to_string(c.objects), std::to_string(c.tp), std::to_string(c.fp),
                                       std::to_string(c.fn), fmt("%.3f", c.precision()), fmt("%.3f", c.recall()),
