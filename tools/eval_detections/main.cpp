@@ -180,7 +180,7 @@ int main(int argc, char** argv) {
       j.field("frames", frames);
       j.field("frames_without_labels", unlabelled);
       j.field("visible_only", o.params.visible_only);
-      j.field("far_detections_ignored", o.params.limit_detections && o.params.max_distance_m < 1e8);
+      j.field("far_detections_ignored", farDetectionsIgnored(o.params));
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel_only", all}, {"stixel_snv", kept}}) {
         j.key(name);
         j.beginObject();
@@ -241,9 +241,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s%s\n", frames, unlabelled,
-                o.params.min_iou, o.params.max_distance_m < 1e8 ? (o.params.limit_detections ? ", distance-limited (objects and unmatched detections)"
-                                                                                   : ", distance-limited (objects only)")
-                                               : "",
+                o.params.min_iou,
+                farDetectionsIgnored(o.params)     ? ", distance-limited (objects and unmatched detections)"
+                : o.params.max_distance_m < 1e8    ? ", distance-limited (objects only)"
+                                                   : "",
                 o.params.visible_only ? ", occlusion < 2 and truncation < 0.5 only" : "");
     std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})

@@ -30,6 +30,10 @@ bool isCounted(const KittiLabel& l, const EvalParams& params) {
          !(l.z > 0 && l.z > params.max_distance_m) && !(params.visible_only && isHidden(l));
 }
 
+bool farDetectionsIgnored(const EvalParams& params) {
+  return params.limit_detections && params.max_distance_m < 1e8f;
+}
+
 std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detections,
                                             const std::vector<KittiLabel>& labels,
                                             const EvalParams& params) {
@@ -64,7 +68,7 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
     }
     // Beyond the distance limit (the detection's own depth) and matching no
     // counted object: outside the evaluated range, like the objects there.
-    bool neutral = params.limit_detections && d.z > 0 && d.z > params.max_distance_m;
+    bool neutral = farDetectionsIgnored(params) && d.z > 0 && d.z > params.max_distance_m;
     for (const int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > params.min_iou;
     for (const int g : dontcare) {
       const EvalBox b = labelBox(labels[g]);

@@ -63,6 +63,9 @@ EvalBox labelBox(const KittiLabel& label);
 // farther than max_distance_m, and visible when visible_only. The others are
 // neither hits nor misses, and detections on them count neither way.
 bool isCounted(const KittiLabel& label, const EvalParams& params);
+// Whether unmatched detections beyond the distance limit count neither way:
+// a limit is set and limit_detections is on (what the tools' headers report).
+bool farDetectionsIgnored(const EvalParams& params);
 // Largely hidden or half outside the image (what visible_only ignores).
 bool isHidden(const KittiLabel& label);
 

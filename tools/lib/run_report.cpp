@@ -455,7 +455,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
                               "regions and ignored objects count neither way)%s.",
                               frames, options.eval.min_iou,
                               options.eval.max_distance_m < 1e8f
-                                  ? cv::format(options.eval.limit_detections
+                                  ? cv::format(farDetectionsIgnored(options.eval)
                                                    ? ", objects and unmatched detections beyond %.0f m ignored"
                                                    : ", objects beyond %.0f m ignored", options.eval.max_distance_m).c_str()
                                   : ""));
