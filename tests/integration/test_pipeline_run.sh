@@ -37,6 +37,11 @@ pass "every service published NERV_HEALTH"
 
 grep -q '"frames_in":6' "$out/summary.json" && grep -q '"frames_out":6' "$out/summary.json" \
   || fail "summary does not count 6 frames in and out: $(head -c 300 "$out/summary.json")"
+# the latency breakdown covers every stage on every frame
+for st in stereo_matcher stixel snv_extrinsic validator; do
+  grep -Eq "\"$st\":\{\"frames\":6," "$out/summary.json" \
+    || fail "latency breakdown lacks 6 frames of $st: $(grep -o '"latency_breakdown_ms".\{0,400\}' "$out/summary.json")"
+done
 "$BIN/nerv_export" "$out/nerv.lcmlog" --disparity-png "$out/disp" >/dev/null
 [[ $(ls "$out/disp" | wc -l) -eq 6 ]] || fail "expected 6 disparity PNGs"
 pass "summary and disparity export"

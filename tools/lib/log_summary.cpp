@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "json_writer.hpp"
+#include "latency_breakdown.hpp"
 #include "log_decode.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
@@ -55,6 +56,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
   std::vector<double> latencies;
   std::map<std::string, int64_t> events_per_channel;
   int64_t first_frame_utime = -1, last_detection_utime = -1, detections_events = 0;
+  LatencyBreakdown breakdown;
 
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     ++events_per_channel[e->channel];
@@ -70,15 +72,19 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       r.frame_id = frame.header.frame_id;
       r.frame_event_utime = e->timestamp;
       if (first_frame_utime < 0) first_frame_utime = e->timestamp;
+      breakdown.add(frame.header.seq, "STEREO_FRAME", e->timestamp, frame.header.utime, -1);
     } else if (decodeEvent(*e, disp)) {
       stage_ms["stereo_matcher"].push_back(disp.processing_ms);
+      breakdown.add(disp.header.seq, "DISPARITY", e->timestamp, disp.header.utime, disp.processing_ms);
     } else if (decodeEvent(*e, stix)) {
       stage_ms["stixel"].push_back(stix.processing_ms);
+      breakdown.add(stix.header.seq, "STIXELS", e->timestamp, stix.header.utime, stix.processing_ms);
       FrameRow& r = frames[stix.header.seq];
       r.ground_source = stix.ground.source;
       r.ground_height_m = stix.ground.height_m;
     } else if (decodeEvent(*e, normals)) {
       stage_ms["snv_extrinsic"].push_back(normals.processing_ms);
+      breakdown.add(normals.header.seq, "SURFACE_NORMALS", e->timestamp, normals.header.utime, normals.processing_ms);
     } else if (decodeEvent(*e, ext)) {
       FrameRow& r = frames[ext.header.seq];
       r.has_extrinsics = true;
@@ -89,6 +95,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       r.confidence = ext.confidence;
     } else if (decodeEvent(*e, det)) {
       stage_ms["validator"].push_back(det.processing_ms);
+      breakdown.add(det.header.seq, "DETECTIONS", e->timestamp, det.header.utime, det.processing_ms);
       FrameRow& r = frames[det.header.seq];
       r.hypotheses = det.num_detections;
       r.kept = det.num_kept;
@@ -140,6 +147,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.endObject();
   }
   j.endObject();
+  breakdown.writeJson(j);
   j.key("events_per_channel");
   j.beginObject();
   for (const auto& [ch, n] : events_per_channel) j.field(ch, n);
@@ -193,6 +201,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       t += buf;
     }
     t += "\n";
+    t += breakdown.text();
     for (const auto& [seq, r] : frames) {
       std::snprintf(buf, sizeof buf,
                     "  %-28s hyp %3d kept %3d  pitch %6.2f deg  height %5.2f m  conf %.2f  ground %s %.2f m\n",
