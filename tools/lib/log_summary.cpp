@@ -147,7 +147,6 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.endObject();
   }
   j.endObject();
-  breakdown.writeJson(j);
   j.key("events_per_channel");
   j.beginObject();
   for (const auto& [ch, n] : events_per_channel) j.field(ch, n);
@@ -165,6 +164,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.endObject();
   }
   j.endObject();
+  breakdown.writeJson(j);
   j.key("frames");
   j.beginArray();
   for (const auto& [seq, r] : frames) {
