@@ -200,6 +200,9 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
       << sp.sgm_p1 << '_' << sp.sgm_p2 << '_' << sp.subpixel << '_' << sp.boundary_snap_px << '_' << sp.downscale
       << "|bm" << sp.bm_block_size << "|wls" << sp.wls_lambda << '_' << sp.wls_sigma << "|road"
       << sp.road_census_width << 'x' << sp.road_census_height << '@' << sp.road_census_from << "|wire" << kDisparityScale;
+  // (the gated mean only when on, so that entries of the matcher without it stay valid)
+  if (sp.gated_mean_radius > 0)
+    key << "|gated" << sp.gated_mean_radius << '_' << sp.gated_mean_range_px << '_' << sp.gated_mean_range_rel;
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
   cv::Mat fixed;

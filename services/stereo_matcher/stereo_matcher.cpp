@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "boundary_snap.hpp"
+#include "gated_mean.hpp"
 #include "opencv_matchers.hpp"
 #include "own_sgm.hpp"
 
@@ -43,11 +44,42 @@ class BoundarySnapped : public StereoMatcher {
   BoundarySnapParams params_;
 };
 
+// Any matcher followed by the depth-gated mean, on the two image halves in
+// parallel (each reads a copy taken before either is written: the result of
+// one pass, whatever the thread count).
+class GatedMeanFiltered : public StereoMatcher {
+ public:
+  GatedMeanFiltered(std::unique_ptr<StereoMatcher> inner, const Params& p) : inner_(std::move(inner)) {
+    params_.radius = p.gated_mean_radius;
+    params_.range_px = static_cast<float>(p.gated_mean_range_px);
+    params_.range_rel = static_cast<float>(p.gated_mean_range_rel);
+    threads_ = std::max(1, std::min(p.threads, 2));
+  }
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    inner_->compute(left, right, disparity, confidence);
+    disparity.copyTo(before_);
+    const int rows = disparity.rows;
+    cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& r) {
+      for (int half = r.start; half < r.end; ++half)
+        gatedMeanRows(before_, disparity, params_, rows * half / 2, rows * (half + 1) / 2);
+    }, threads_);
+  }
+  std::string name() const override { return inner_->name(); }
+
+ private:
+  std::unique_ptr<StereoMatcher> inner_;
+  GatedMeanParams params_;
+  int threads_ = 2;
+  cv::Mat before_;
+};
+
 std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
   auto m = createMatcher(p);
   const int band = snapBand(p);
-  if (band <= 0) return m;
-  return std::make_unique<BoundarySnapped>(std::move(m), band);
+  if (band > 0) m = std::make_unique<BoundarySnapped>(std::move(m), band);
+  if (p.gated_mean_radius > 0) m = std::make_unique<GatedMeanFiltered>(std::move(m), p);
+  return m;
 }
 
 // For slow computers: both views are averaged down by 2 (INTER_AREA), matched

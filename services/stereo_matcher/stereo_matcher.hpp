@@ -50,6 +50,11 @@ struct Params {
   // disparity boundary its true (intensity) edge may lie [px]. -1 = half the matching
   // window of the algorithm (census_width / 2, block_size / 2); 0 = off.
   int boundary_snap_px = -1;
+  // Depth-gated mean after every other filter (gated_mean.hpp, docs/stereo.md "Gated
+  // mean"): window radius [px] (0 = off) and the gate, max(range_px, range_rel * d).
+  int gated_mean_radius = 2;
+  double gated_mean_range_px = 0.5;
+  double gated_mean_range_rel = 0.05;
 };
 
 // First row of nerv_sgm's road band in an image of `rows` rows (rows when there is none).

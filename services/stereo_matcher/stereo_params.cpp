@@ -84,6 +84,9 @@ Params readParams(ConfigSection& c) {
   c.get("subpixel", p.subpixel);
   c.get("threads", p.threads, 1, 64);
   c.get("boundary_snap_px", p.boundary_snap_px, -1, 32);
+  c.get("gated_mean_radius", p.gated_mean_radius, 0, 7);
+  c.get("gated_mean_range_px", p.gated_mean_range_px, 0.0, 16.0);
+  c.get("gated_mean_range_rel", p.gated_mean_range_rel, 0.0, 1.0);
   checkParams(p, c.path());
   return p;
 }
