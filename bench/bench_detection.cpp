@@ -185,8 +185,9 @@ cv::Mat wireFixed(const cv::Mat& d) {
 
 // Disparity of one frame as the pipeline's later stages see it (wireFixed), from
 // the cache when the same pair and matcher settings were computed before (every
-// stereo::Params field but `threads` is in the key: until 2026-12-02 the road
-// band, BM and WLS fields were not, so a --set of them read stale entries). The
+// stereo::Params field but `threads` is in the key, stereo::describeParams: until
+// 2026-12-02 the road band, BM and WLS fields were not, so a --set of them read
+// stale entries). The
 // cache holds the wire's uint16 as PNG, so cached and fresh runs are identical
 // (an earlier cache of 1/16 px steps rounded nerv_sgm's finer subpixel values:
 // up to 0.01 F1 apart from a fresh run; its files have other names).
@@ -194,15 +195,7 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
                     const std::string& cache_dir, double& ms) {
   std::ostringstream key;
   key << fs::absolute(f.left_path).string() << '|' << fs::last_write_time(f.left_path).time_since_epoch().count()
-      << '|' << sp.algorithm << sp.num_disparities << '_' << sp.min_disparity << '_' << sp.block_size << '_'
-      << sp.p1 << '_' << sp.p2 << '_' << sp.uniqueness_ratio << '_' << sp.speckle_window_size << '_'
-      << sp.speckle_range << '_' << sp.lr_max_diff << '_' << sp.census_width << 'x' << sp.census_height << '_'
-      << sp.sgm_p1 << '_' << sp.sgm_p2 << '_' << sp.subpixel << '_' << sp.boundary_snap_px << '_' << sp.downscale
-      << "|bm" << sp.bm_block_size << "|wls" << sp.wls_lambda << '_' << sp.wls_sigma << "|road"
-      << sp.road_census_width << 'x' << sp.road_census_height << '@' << sp.road_census_from << "|wire" << kDisparityScale;
-  // (the gated mean only when on, so that entries of the matcher without it stay valid)
-  if (sp.gated_mean_radius > 0)
-    key << "|gated" << sp.gated_mean_radius << '_' << sp.gated_mean_range_px << '_' << sp.gated_mean_range_rel;
+      << '|' << stereo::describeParams(sp) << "|wire" << kDisparityScale;
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
   cv::Mat fixed;

@@ -10,8 +10,9 @@
 //                        [--snv "{key: value, ...}"] [--cache DIR] [--pose-only]
 //
 // --snv: snv_extrinsic keys (as in the service config) for the estimator;
-// --cache: keep each matcher's disparity per frame in DIR (raw float files) and
-// reuse it on the next run (variants of the snv keys on the same disparities);
+// --cache: keep each matcher's disparity per frame in DIR (raw float files, named
+// by the matcher's settings, --blur, --median and the scene seed) and reuse it on
+// the next run (variants of the snv keys on the same disparities);
 // --pose-only: only the pose lines (with a cache, frames are then not rendered).
 //
 // Also printed (not with --pose-only): the "oracle" plane - the estimator's
@@ -40,6 +41,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -192,7 +194,16 @@ int main(int argc, char** argv) {
   for (int k = 0; k < frames; ++k) {
     const int f = k * stride;
     const synth::CameraPose pose = synth::cameraPose(spec.camera, world, f);
-    auto cachePath = [&](size_t m) { return cache + "/" + scene + "_" + matchers[m] + "_" + std::to_string(f) + ".bin"; };
+    // Keyed by everything that changes a matcher's output (its settings, --blur and
+    // --median), so that a changed default or option never reads a stale file.
+    auto cachePath = [&](size_t m) {
+      stereo::Params p = base;
+      p.algorithm = matchers[m];
+      const std::string key = stereo::describeParams(p) + "|blur" + std::to_string(blur) + "|median" +
+                              std::to_string(median) + "|seed" + std::to_string(spec.seed);
+      return cache + "/" + scene + "_" + matchers[m] + "_" + std::to_string(f) + "_" +
+             std::to_string(std::hash<std::string>{}(key)) + ".bin";
+    };
     bool all_cached = !cache.empty() && pose_only;
     for (size_t m = 0; m < matchers.size() && all_cached; ++m) {
       FILE* probe = std::fopen(cachePath(m).c_str(), "rb");

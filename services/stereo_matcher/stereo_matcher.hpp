@@ -60,6 +60,10 @@ struct Params {
 // First row of nerv_sgm's road band in an image of `rows` rows (rows when there is none).
 int roadCensusRow(const Params& params, int rows);
 
+// Every field that changes the disparity (all but `threads`), as one canonical
+// string: the key of a disparity cache (bench_detection, bench_road_disparity).
+std::string describeParams(const Params& params);
+
 // Declares and reads the keys of the stereo_matcher section; ConfigError names the bad key.
 Params readParams(ConfigSection& section);
 // Throws ConfigError (naming the key under `path`) when the combination is unusable.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace nerv::stereo {
 
@@ -56,6 +57,19 @@ int roadCensusRow(const Params& p, int rows) {
   return p.road_census_from >= 1.0
              ? rows
              : std::clamp(static_cast<int>(std::lround(p.road_census_from * rows)), 0, rows);
+}
+
+std::string describeParams(const Params& p) {
+  std::ostringstream s;
+  s << "algorithm=" << p.algorithm << ";num_disparities=" << p.num_disparities << ";min_disparity=" << p.min_disparity
+    << ";downscale=" << p.downscale << ";uniqueness_ratio=" << p.uniqueness_ratio
+    << ";speckle=" << p.speckle_window_size << '/' << p.speckle_range << ";lr_max_diff=" << p.lr_max_diff
+    << ";sgbm=" << p.block_size << '/' << p.p1 << '/' << p.p2 << ";bm_block_size=" << p.bm_block_size
+    << ";wls=" << p.wls_lambda << '/' << p.wls_sigma << ";census=" << p.census_width << 'x' << p.census_height
+    << ";road_census=" << p.road_census_width << 'x' << p.road_census_height << '@' << p.road_census_from
+    << ";sgm=" << p.sgm_p1 << '/' << p.sgm_p2 << ";subpixel=" << p.subpixel << ";boundary_snap_px=" << p.boundary_snap_px
+    << ";gated_mean=" << p.gated_mean_radius << '/' << p.gated_mean_range_px << '/' << p.gated_mean_range_rel;
+  return s.str();
 }
 
 Params readParams(ConfigSection& c) {

@@ -2,6 +2,9 @@
 // service applies to every frame (counted and dropped, never a crash).
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <vector>
+
 #include "message_check.hpp"
 #include "stereo_matcher.hpp"
 
@@ -93,4 +96,34 @@ TEST(stereoConfig, BadFramesAreRejectedWithACounter) {
   calib.calib.width = 128;
   const Problem c = checkStereoFrame(calib, limits);
   EXPECT_EQ(c.counter, "size_mismatch") << c.message;
+}
+
+TEST(stereoConfig, DescribeParamsNamesEveryFieldThatChangesTheDisparity) {
+  const stereo::Params base;
+  const std::string b = stereo::describeParams(base);
+  EXPECT_EQ(b, stereo::describeParams(stereo::Params{}));
+  stereo::Params t = base;
+  t.threads = 1;
+  EXPECT_EQ(stereo::describeParams(t), b) << "the thread count does not change the output";
+  // each field changed alone gives another description
+  std::vector<std::function<void(stereo::Params&)>> changes = {
+      [](stereo::Params& p) { p.algorithm = "sgbm"; }, [](stereo::Params& p) { p.num_disparities = 64; },
+      [](stereo::Params& p) { p.min_disparity = 2; }, [](stereo::Params& p) { p.downscale = 2; },
+      [](stereo::Params& p) { p.uniqueness_ratio = 5; }, [](stereo::Params& p) { p.speckle_window_size = 50; },
+      [](stereo::Params& p) { p.speckle_range = 1; }, [](stereo::Params& p) { p.lr_max_diff = 2; },
+      [](stereo::Params& p) { p.block_size = 7; }, [](stereo::Params& p) { p.p1 = 100; },
+      [](stereo::Params& p) { p.p2 = 900; }, [](stereo::Params& p) { p.bm_block_size = 21; },
+      [](stereo::Params& p) { p.wls_lambda = 100; }, [](stereo::Params& p) { p.wls_sigma = 1.0; },
+      [](stereo::Params& p) { p.census_width = 7; }, [](stereo::Params& p) { p.census_height = 5; },
+      [](stereo::Params& p) { p.road_census_width = 11; }, [](stereo::Params& p) { p.road_census_height = 5; },
+      [](stereo::Params& p) { p.road_census_from = 0.8; }, [](stereo::Params& p) { p.sgm_p1 = 5; },
+      [](stereo::Params& p) { p.sgm_p2 = 60; }, [](stereo::Params& p) { p.subpixel = false; },
+      [](stereo::Params& p) { p.boundary_snap_px = 0; }, [](stereo::Params& p) { p.gated_mean_radius = 0; },
+      [](stereo::Params& p) { p.gated_mean_range_px = 1.0; },
+      [](stereo::Params& p) { p.gated_mean_range_rel = 0.1; }};
+  for (size_t i = 0; i < changes.size(); ++i) {
+    stereo::Params p = base;
+    changes[i](p);
+    EXPECT_NE(stereo::describeParams(p), b) << "change " << i << " is not in the description";
+  }
 }
