@@ -1,5 +1,7 @@
-// StereoMatcher::create: algorithm name -> implementation, optionally wrapped
-// in the reduced-resolution mode (match at half size, publish at full size).
+// StereoMatcher::create: algorithm name -> implementation, followed by the
+// post-filters every algorithm gets (foreground fattening correction, gated
+// mean), optionally wrapped in the reduced-resolution mode (match at half size,
+// publish at full size).
 #include "stereo_matcher.hpp"
 
 #include <opencv2/imgproc.hpp>
