@@ -189,20 +189,24 @@ int main(int argc, char** argv) {
       p.algorithm = matchers[m];
       impl[m] = stereo::StereoMatcher::create(p);
     }
+  // Cache files are keyed by everything that changes a matcher's output (its
+  // settings, --blur, --median, the scene seed), so that a changed default or
+  // option never reads a stale file.
+  std::vector<std::string> cache_keys(matchers.size());
+  for (size_t m = 0; m < matchers.size(); ++m) {
+    stereo::Params p = base;
+    p.algorithm = matchers[m];
+    const std::string key = stereo::describeParams(p) + "|blur" + std::to_string(blur) + "|median" +
+                            std::to_string(median) + "|seed" + std::to_string(spec.seed);
+    cache_keys[m] = std::to_string(std::hash<std::string>{}(key));
+  }
   std::unique_ptr<stereo::StereoMatcher> mask_matcher;
   const double fb = cam.fx * cam.baseline_m;
   for (int k = 0; k < frames; ++k) {
     const int f = k * stride;
     const synth::CameraPose pose = synth::cameraPose(spec.camera, world, f);
-    // Keyed by everything that changes a matcher's output (its settings, --blur and
-    // --median), so that a changed default or option never reads a stale file.
     auto cachePath = [&](size_t m) {
-      stereo::Params p = base;
-      p.algorithm = matchers[m];
-      const std::string key = stereo::describeParams(p) + "|blur" + std::to_string(blur) + "|median" +
-                              std::to_string(median) + "|seed" + std::to_string(spec.seed);
-      return cache + "/" + scene + "_" + matchers[m] + "_" + std::to_string(f) + "_" +
-             std::to_string(std::hash<std::string>{}(key)) + ".bin";
+      return cache + "/" + scene + "_" + matchers[m] + "_" + std::to_string(f) + "_" + cache_keys[m] + ".bin";
     };
     bool all_cached = !cache.empty() && pose_only;
     for (size_t m = 0; m < matchers.size() && all_cached; ++m) {

@@ -35,6 +35,7 @@
 #include "json_writer.hpp"
 #include "log_decode.hpp"
 #include "miss_causes.hpp"
+#include "percentile.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -108,12 +109,6 @@ const TruePose* findPose(const std::map<std::string, TruePose>& poses, const std
   } catch (...) {
   }
   return nullptr;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
 }  // namespace

@@ -4,15 +4,10 @@
 #include <cstdio>
 
 #include "json_writer.hpp"
+#include "percentile.hpp"
 
 namespace nerv {
 namespace {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
 
 const char* kChannels[] = {"STEREO_FRAME", "DISPARITY", "STIXELS", "SURFACE_NORMALS", "DETECTIONS"};
 

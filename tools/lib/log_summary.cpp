@@ -11,6 +11,7 @@
 #include "json_writer.hpp"
 #include "latency_breakdown.hpp"
 #include "log_decode.hpp"
+#include "percentile.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -21,12 +22,6 @@
 
 namespace nerv {
 namespace {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
 
 double mean(const std::vector<double>& v) {
   double s = 0;
