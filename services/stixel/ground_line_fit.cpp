@@ -77,31 +77,48 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   // height: finer than the IRLS capture band below.
   const int na = std::clamp(static_cast<int>((a_max - a_min) * vd.rows / 3) + 1, 32, 256);
   const int nh = std::max(3, static_cast<int>(std::ceil(vh_max - vh_min)) + 1);
-  std::vector<float> acc(static_cast<size_t>(na) * nh, 0.0f);
+  // The accumulator is stored horizon-major (acc[j * na + i]): a cell's votes
+  // for neighbouring slopes land in neighbouring horizon bins, so this way they
+  // share cache lines; slope-major, each vote touched another line of a space
+  // too large for the first-level cache.
+  const int spare = na * nh;  // index of a vote outside the space
+  std::vector<float> acc(static_cast<size_t>(spare), 0.0f);
   std::vector<double> inv_a(na);
   for (int i = 0; i < na; ++i) inv_a[i] = 1.0 / (a_min + (a_max - a_min) * i / (na - 1));
+  // Per cell, first every slope's accumulator index (a loop without stores,
+  // which vectorizes), then the additions: a cell votes once per slope, so its
+  // additions never touch the same accumulator twice.
+  std::vector<int> index(na);
+  const double nh_d = nh;
   for (const Cell& c : cells) {
     const double base = c.v - vh_min + 0.5;  // + 0.5: truncation below rounds
     for (int i = 0; i < na; ++i) {
       const double x = base - c.d * inv_a[i];
-      if (x >= 0 && x < nh) acc[static_cast<size_t>(i) * nh + static_cast<int>(x)] += c.w;
+      const bool inside = (x >= 0.0) & (x < nh_d);
+      index[i] = inside ? static_cast<int>(inside ? x : 0.0) * na + i : spare;
     }
+    // x grows with the slope index, so the votes inside form one run; skipping
+    // the others keeps them from chaining through a shared spare cell.
+    for (int i = 0; i < na; ++i)
+      if (index[i] != spare) acc[index[i]] += c.w;
   }
   // 3x3 box sum (separable): a cell's disparity noise scatters its vote over
   // neighbouring horizon bins.
-  std::vector<float> rowsum(acc.size(), 0.0f);
-  for (int i = 0; i < na; ++i)
-    for (int j = 1; j + 1 < nh; ++j) {
-      const size_t o = static_cast<size_t>(i) * nh + j;
-      rowsum[o] = acc[o - 1] + acc[o] + acc[o + 1];
+  std::vector<float> hsum(acc.size(), 0.0f);
+  for (int j = 1; j + 1 < nh; ++j)
+    for (int i = 0; i < na; ++i) {
+      const size_t o = static_cast<size_t>(j) * na + i;
+      hsum[o] = acc[o - na] + acc[o] + acc[o + na];
     }
+  // The first maximum in slope-major order (smallest slope, then smallest
+  // horizon), whichever order the loops run in.
   float best = 0;
   int bi = -1, bj = -1;
-  for (int i = 1; i + 1 < na; ++i)
-    for (int j = 1; j + 1 < nh; ++j) {
-      const size_t o = static_cast<size_t>(i) * nh + j;
-      const float s = rowsum[o - nh] + rowsum[o] + rowsum[o + nh];
-      if (s > best) best = s, bi = i, bj = j;
+  for (int j = 1; j + 1 < nh; ++j)
+    for (int i = 1; i + 1 < na; ++i) {
+      const size_t o = static_cast<size_t>(j) * na + i;
+      const float s = hsum[o - 1] + hsum[o] + hsum[o + 1];
+      if (s > best || (s == best && bi >= 0 && i < bi)) best = s, bi = i, bj = j;
     }
   if (bi < 0) {
     out.reason = "no Hough peak";
