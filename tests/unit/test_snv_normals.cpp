@@ -414,7 +414,9 @@ TEST(snvLocalFields, RoisOutsideTheGroundRowsGetTheirOwnFieldWithTheSameNormals)
         ASSERT_EQ(a[k].v, b[k].v);
         ASSERT_EQ(a[k].n, b[k].n);
       }
-      if (rois[i].area() > 1000) EXPECT_GT(a.size(), 100u);
+      if (rois[i].area() > 1000) {
+        EXPECT_GT(a.size(), 100u);
+      }
     }
   }
 }
