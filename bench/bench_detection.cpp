@@ -312,6 +312,7 @@ struct Track {
   int last_frame;
   int frames = 0, covered = 0, kept_covered = 0;
   float min_z = 1e9f, max_z = 0;
+  std::string pattern;  // one character per frame of the track: '#' covered, '.' not
 };
 
 struct Stat {
@@ -515,7 +516,7 @@ int main(int argc, char** argv) {
           if (dx < 1.5f && dz < 6.0f && dx + dz < bestd) bestd = dx + dz, ti = static_cast<int>(t);
         }
         if (ti < 0) {
-          tracks.push_back({l.type, l.h, l.w, l.l, l.x, l.z, static_cast<int>(fi)});
+          tracks.push_back({l.type, l.h, l.w, l.l, l.x, l.z, static_cast<int>(fi), 0, 0, 0, 1e9f, 0, {}});
           ti = static_cast<int>(tracks.size()) - 1;
         }
         Track& tr = tracks[ti];
@@ -526,6 +527,7 @@ int main(int argc, char** argv) {
         bool cov = false;
         for (const auto& h : hyps) cov = cov || iou(h, labelBox(l)) > ep.min_iou;
         tr.covered += cov ? 1 : 0;
+        tr.pattern += cov ? '#' : '.';
         tr.kept_covered += kept_tp_label[i] ? 1 : 0;
       }
 
@@ -669,8 +671,8 @@ int main(int argc, char** argv) {
       std::printf("per-object coverage (hypothesis IoU > 0.5) of %d objects%s: %d covered in >= 95 %% of their frames\n",
                   n, o.visible ? " (occlusion < 2, truncation < 0.5)" : "", ok);
       for (const Track* t : bad)
-        std::printf("  %-10s %2d/%2d frames covered (kept TP %2d), z %.1f..%.1f m, x %.1f\n", t->type.c_str(),
-                    t->covered, t->frames, t->kept_covered, t->min_z, t->max_z, t->x);
+        std::printf("  %-10s %2d/%2d frames covered (kept TP %2d), z %.1f..%.1f m, x %.1f  %s\n", t->type.c_str(),
+                    t->covered, t->frames, t->kept_covered, t->min_z, t->max_z, t->x, t->pattern.c_str());
     }
     if (ground_h.n || snv_h.n)
       std::printf("pose vs extrinsics (mean / max |error|): ground model height %+.3f / %.3f m, pitch %+.3f / %.3f deg "
