@@ -22,10 +22,20 @@ std::vector<Cell> votingCells(const VDisparity& vd, const GroundLineFitParams& p
   std::vector<std::pair<int, int>> row;  // (count, bin)
   for (int v = 0; v < vd.rows; ++v) {
     row.clear();
-    for (int k = 1; k < vd.bins; ++k) {  // bin 0 (d < 1 px) carries no slope information
-      const int c = vd.cellCount(v, k);
-      if (c >= min_count) row.emplace_back(c, k);
+    const int* count = &vd.count[static_cast<size_t>(v) * vd.bins];
+    // Bin 0 (d < 1 px) carries no slope information. Most bins hold fewer than
+    // min_count pixels: blocks of 8 are tested at once (a loop the compiler
+    // vectorizes) and only blocks with a strong bin are walked.
+    int k = 1;
+    for (; k + 8 <= vd.bins; k += 8) {
+      int any = 0;
+      for (int j = 0; j < 8; ++j) any |= count[k + j] >= min_count;
+      if (!any) continue;
+      for (int j = 0; j < 8; ++j)
+        if (count[k + j] >= min_count) row.emplace_back(count[k + j], k + j);
     }
+    for (; k < vd.bins; ++k)
+      if (count[k] >= min_count) row.emplace_back(count[k], k);
     const int keep = std::min<int>(p.max_cells_per_row, static_cast<int>(row.size()));
     std::partial_sort(row.begin(), row.begin() + keep, row.end(),
                       [](const auto& x, const auto& y) { return x.first > y.first; });
@@ -81,26 +91,31 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   // for neighbouring slopes land in neighbouring horizon bins, so this way they
   // share cache lines; slope-major, each vote touched another line of a space
   // too large for the first-level cache.
-  const int spare = na * nh;  // index of a vote outside the space
-  std::vector<float> acc(static_cast<size_t>(spare), 0.0f);
+  std::vector<float> acc(static_cast<size_t>(na) * nh, 0.0f);
   std::vector<double> inv_a(na);
   for (int i = 0; i < na; ++i) inv_a[i] = 1.0 / (a_min + (a_max - a_min) * i / (na - 1));
-  // Per cell, first every slope's accumulator index (a loop without stores,
-  // which vectorizes), then the additions: a cell votes once per slope, so its
-  // additions never touch the same accumulator twice.
-  std::vector<int> index(na);
+  // A cell's horizon bin x = base - d / a grows with the slope index (d > 0 and
+  // 1/a falls, both exactly monotonic in floating point), so its votes inside
+  // the space form one run of slopes: found by two bisections on the same
+  // expression, then added without a test per slope.
   const double nh_d = nh;
   for (const Cell& c : cells) {
     const double base = c.v - vh_min + 0.5;  // + 0.5: truncation below rounds
-    for (int i = 0; i < na; ++i) {
-      const double x = base - c.d * inv_a[i];
-      const bool inside = (x >= 0.0) & (x < nh_d);
-      index[i] = inside ? static_cast<int>(inside ? x : 0.0) * na + i : spare;
+    auto xAt = [&](int i) { return base - c.d * inv_a[i]; };
+    int lo = 0, hi = na;  // first slope with x >= 0
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (xAt(mid) >= 0.0) hi = mid;
+      else lo = mid + 1;
     }
-    // x grows with the slope index, so the votes inside form one run; skipping
-    // the others keeps them from chaining through a shared spare cell.
-    for (int i = 0; i < na; ++i)
-      if (index[i] != spare) acc[index[i]] += c.w;
+    const int first = lo;
+    hi = na;  // first slope with x >= nh
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (xAt(mid) < nh_d) lo = mid + 1;
+      else hi = mid;
+    }
+    for (int i = first; i < lo; ++i) acc[static_cast<size_t>(static_cast<int>(xAt(i)) * na + i)] += c.w;
   }
   // 3x3 box sum (separable): a cell's disparity noise scatters its vote over
   // neighbouring horizon bins.

@@ -69,24 +69,49 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
   // Two scores in one pass: the plain one (a near miss is -1) and the bridged one
   // (a near miss is 0), and per row its matches and valid pixels.
   int best_row = foot_row;
+  if (foot_row < limit_row) return best_row;
   int sum = 0, best = 0;
   const bool bridge = t.near_miss_px > 0.0f && t.max_extension_rows > 0;
   struct Row { int bridged, matches, valid; };
   thread_local std::vector<Row> rows;
-  rows.clear();
+  rows.resize(static_cast<size_t>(foot_row - limit_row + 1));
   int bsum = 0;
   const float h = g.height_m;
   const float near_lo = d - t.tolerance_px - t.near_miss_px;
-  for (int v = foot_row; v >= limit_row; --v) {
-    const float* row = disparity.ptr<float>(v);
-    // Road at this row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
-    const float road_max = h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m);
-    const RowCounts c = countRow(row, u0, u1, road_max, d, t.tolerance_px, near_lo);
+  // Road at a row: height h*(x - dg)/x <= tol  <=>  x*(h - tol) <= h*dg.
+  auto roadMax = [&](int v) { return h * g.groundDisparity(static_cast<float>(v)) / (h - ground_tolerance_m); };
+  auto account = [&](int v, const RowCounts& c) {
     sum += c.matches - c.misses;
     bsum += c.matches - c.far_misses;
     if (sum > best) best = sum, best_row = v;
-    if (bridge) rows.push_back({bsum, c.matches, c.valid});
-  }
+    rows[static_cast<size_t>(foot_row - v)] = {bsum, c.matches, c.valid};
+  };
+#ifdef __AVX2__
+  if (u1 - u0 <= 8 && u1 > u0) {
+    // A strip of one register (the default widths): its lane mask and the
+    // constants stay in registers over the rows; misses = valid - matches.
+    const __m256i in_strip = _mm256_cmpgt_epi32(_mm256_set1_epi32(u1 - u0), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256 v_d = _mm256_set1_ps(d), v_tol = _mm256_set1_ps(t.tolerance_px);
+    const __m256 v_near = _mm256_set1_ps(near_lo), v_zero = _mm256_setzero_ps(), v_inf = _mm256_set1_ps(kInf);
+    const __m256 v_abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    for (int v = foot_row; v >= limit_row; --v) {
+      const __m256 x = _mm256_maskload_ps(disparity.ptr<float>(v) + u0, in_strip);
+      const __m256 v_road = _mm256_set1_ps(roadMax(v));
+      const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(x, v_zero, _CMP_GT_OQ), _mm256_cmp_ps(x, v_inf, _CMP_LT_OQ)),
+                                      _mm256_cmp_ps(x, v_road, _CMP_GT_OQ));
+      const __m256 close = _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(x, v_d), v_abs), v_tol, _CMP_LE_OQ);
+      const __m256 near = _mm256_and_ps(_mm256_cmp_ps(x, v_d, _CMP_LT_OQ), _mm256_cmp_ps(x, v_near, _CMP_GE_OQ));
+      RowCounts c;
+      c.valid = __builtin_popcount(_mm256_movemask_ps(ok));
+      c.matches = __builtin_popcount(_mm256_movemask_ps(_mm256_and_ps(ok, close)));
+      c.misses = c.valid - c.matches;
+      c.far_misses = __builtin_popcount(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_or_ps(close, near), ok)));
+      account(v, c);
+    }
+  } else
+#endif
+    for (int v = foot_row; v >= limit_row; --v)
+      account(v, countRow(disparity.ptr<float>(v), u0, u1, roadMax(v), d, t.tolerance_px, near_lo));
   if (!bridge) return best_row;
   // The bridged argmax at most max_extension_rows above the plain top ...
   const int from = std::max(limit_row, best_row - t.max_extension_rows);
