@@ -228,11 +228,16 @@ TEST(stixelFastPaths, ObstacleMapHoldsTheObstaclePixelsAndItsMedianIsTheDirectOn
   EXPECT_GT(obstacles, 1000);
   std::vector<float> a, b;
   std::mt19937 rng(4);
-  for (int k = 0; k < 200; ++k) {
-    const int u0 = static_cast<int>(rng() % 190), v0 = static_cast<int>(rng() % 200);
+  // Strip widths 1-24: one register, several, and a last register only partly
+  // in the strip; the strip may end at the image's last column.
+  for (int k = 0; k < 400; ++k) {
+    const int width = 1 + k % 24;
+    const int u0 = k % 7 == 0 ? disp.cols - width : static_cast<int>(rng() % static_cast<unsigned>(disp.cols - width));
+    const int v0 = static_cast<int>(rng() % 200);
     const float lo = static_cast<float>(rng() % 40), hi = lo + 1.0f + static_cast<float>(rng() % 10);
-    EXPECT_EQ(medianInRange(map, u0, u0 + 5, v0, v0 + 39, lo, hi, a),
-              medianObstacleDisparity(disp, g, fs, u0, u0 + 5, v0, v0 + 39, lo, hi, b));
+    EXPECT_EQ(medianInRange(map, u0, u0 + width, v0, v0 + 39, lo, hi, a),
+              medianObstacleDisparity(disp, g, fs, u0, u0 + width, v0, v0 + 39, lo, hi, b))
+        << "width " << width << " u0 " << u0;
   }
 }
 
