@@ -312,7 +312,7 @@ struct Track {
   int last_frame;
   int frames = 0, covered = 0, kept_covered = 0;
   float min_z = 1e9f, max_z = 0;
-  std::string pattern;  // one character per frame of the track: '#' covered, '.' not
+  std::string pattern{};  // one character per frame of the track: '#' covered, '.' not
 };
 
 struct Stat {
@@ -516,7 +516,7 @@ int main(int argc, char** argv) {
           if (dx < 1.5f && dz < 6.0f && dx + dz < bestd) bestd = dx + dz, ti = static_cast<int>(t);
         }
         if (ti < 0) {
-          tracks.push_back({l.type, l.h, l.w, l.l, l.x, l.z, static_cast<int>(fi), 0, 0, 0, 1e9f, 0, {}});
+          tracks.push_back({l.type, l.h, l.w, l.l, l.x, l.z, static_cast<int>(fi)});
           ti = static_cast<int>(tracks.size()) - 1;
         }
         Track& tr = tracks[ti];

@@ -102,20 +102,18 @@ GroundLine fitGroundLine(const VDisparity& vd, const StereoCamera& cam,
   for (const Cell& c : cells) {
     const double base = c.v - vh_min + 0.5;  // + 0.5: truncation below rounds
     auto xAt = [&](int i) { return base - c.d * inv_a[i]; };
-    int lo = 0, hi = na;  // first slope with x >= 0
-    while (lo < hi) {
-      const int mid = (lo + hi) / 2;
-      if (xAt(mid) >= 0.0) hi = mid;
-      else lo = mid + 1;
-    }
-    const int first = lo;
-    hi = na;  // first slope with x >= nh
-    while (lo < hi) {
-      const int mid = (lo + hi) / 2;
-      if (xAt(mid) < nh_d) lo = mid + 1;
-      else hi = mid;
-    }
-    for (int i = first; i < lo; ++i) acc[static_cast<size_t>(static_cast<int>(xAt(i)) * na + i)] += c.w;
+    // First slope in [lo, na) whose x reaches `bound` (x grows with the slope).
+    auto firstReaching = [&](int lo, double bound) {
+      int hi = na;
+      while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (xAt(mid) >= bound) hi = mid;
+        else lo = mid + 1;
+      }
+      return lo;
+    };
+    const int first = firstReaching(0, 0.0), end = firstReaching(first, nh_d);
+    for (int i = first; i < end; ++i) acc[static_cast<size_t>(static_cast<int>(xAt(i)) * na + i)] += c.w;
   }
   // 3x3 box sum (separable): a cell's disparity noise scatters its vote over
   // neighbouring horizon bins.

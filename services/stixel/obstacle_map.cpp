@@ -30,6 +30,8 @@ cv::Mat obstacleDisparityMap(const cv::Mat& disparity, const GroundModel& g, con
 
 float medianInRange(const cv::Mat& obstacle_map, int u0, int u1, int v0, int v1, float lo, float hi,
                     std::vector<float>& samples) {
+  float* out = nullptr;
+  size_t n = 0;
 #ifdef __AVX2__
   // Eight columns per step, the strip's last lanes masked; the samples are
   // taken in the scalar loop's order (rows, then columns), so nth_element
@@ -38,11 +40,9 @@ float medianInRange(const cv::Mat& obstacle_map, int u0, int u1, int v0, int v1,
   // scalar loop's pixel tests mispredict often on a ragged disparity).
   const __m256 v_lo = _mm256_set1_ps(lo), v_hi = _mm256_set1_ps(hi);
   const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const int width = u1 - u0;
-  const size_t most = static_cast<size_t>(std::max(0, v1 - v0 + 1)) * std::max(0, width) + 8;
+  const size_t most = static_cast<size_t>(std::max(0, v1 - v0 + 1)) * std::max(0, u1 - u0) + 8;
   if (samples.size() < most) samples.resize(most);  // grows only: no clearing per call
-  float* out = samples.data();
-  size_t n = 0;
+  out = samples.data();
   for (int v = v0; v <= v1; ++v) {
     const float* row = obstacle_map.ptr<float>(v);
     for (int u = u0; u < u1; u += 8) {
@@ -60,9 +60,6 @@ float medianInRange(const cv::Mat& obstacle_map, int u0, int u1, int v0, int v1,
       }
     }
   }
-  if (n == 0) return 0.0f;
-  std::nth_element(out, out + n / 2, out + n);
-  return out[n / 2];
 #else
   samples.clear();
   for (int v = v0; v <= v1; ++v) {
@@ -70,11 +67,12 @@ float medianInRange(const cv::Mat& obstacle_map, int u0, int u1, int v0, int v1,
     for (int u = u0; u < u1; ++u)
       if (row[u] >= lo && row[u] < hi) samples.push_back(row[u]);  // NaN fails
   }
-  if (samples.empty()) return 0.0f;
-  auto mid = samples.begin() + samples.size() / 2;
-  std::nth_element(samples.begin(), mid, samples.end());
-  return *mid;
+  out = samples.data();
+  n = samples.size();
 #endif
+  if (n == 0) return 0.0f;
+  std::nth_element(out, out + n / 2, out + n);
+  return out[n / 2];
 }
 
 }  // namespace nerv::stixel

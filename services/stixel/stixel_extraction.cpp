@@ -24,28 +24,39 @@ struct RowCounts {
   int matches = 0, valid = 0, misses = 0, far_misses = 0;
 };
 
+#ifdef __AVX2__
+// The per-pixel tests of countRow on one register of eight columns (masked
+// lanes load 0, which is no valid disparity), with the strip's constants set
+// once: the same comparisons as the scalar loop in countRow.
+struct LaneTest {
+  __m256 d, tol, near_lo, zero = _mm256_setzero_ps(), inf = _mm256_set1_ps(kInf);
+  __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  LaneTest(float d_, float tol_, float near_lo_)
+      : d(_mm256_set1_ps(d_)), tol(_mm256_set1_ps(tol_)), near_lo(_mm256_set1_ps(near_lo_)) {}
+  void add(RowCounts& c, __m256 x, float road_max) const {
+    const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(x, zero, _CMP_GT_OQ), _mm256_cmp_ps(x, inf, _CMP_LT_OQ)),
+                                    _mm256_cmp_ps(x, _mm256_set1_ps(road_max), _CMP_GT_OQ));
+    const __m256 close = _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(x, d), abs_mask), tol, _CMP_LE_OQ);
+    const __m256 near = _mm256_and_ps(_mm256_cmp_ps(x, d, _CMP_LT_OQ), _mm256_cmp_ps(x, near_lo, _CMP_GE_OQ));
+    const int valid = __builtin_popcount(_mm256_movemask_ps(ok));
+    const int matches = __builtin_popcount(_mm256_movemask_ps(_mm256_and_ps(ok, close)));
+    c.valid += valid;
+    c.matches += matches;
+    c.misses += valid - matches;
+    c.far_misses += __builtin_popcount(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_or_ps(close, near), ok)));
+  }
+};
+
+__m256i stripLanes(int remaining) {
+  return _mm256_cmpgt_epi32(_mm256_set1_epi32(remaining), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+}
+#endif
+
 RowCounts countRow(const float* row, int u0, int u1, float road_max, float d, float tol, float near_lo) {
   RowCounts c;
 #ifdef __AVX2__
-  // Eight columns per step, the strip's lanes masked (masked lanes load 0, which
-  // is no valid disparity); the same comparisons as the scalar loop below.
-  const __m256 v_road = _mm256_set1_ps(road_max), v_d = _mm256_set1_ps(d), v_tol = _mm256_set1_ps(tol);
-  const __m256 v_near = _mm256_set1_ps(near_lo), v_zero = _mm256_setzero_ps(), v_inf = _mm256_set1_ps(kInf);
-  const __m256 v_abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (int u = u0; u < u1; u += 8) {
-    const __m256i in_strip = _mm256_cmpgt_epi32(_mm256_set1_epi32(u1 - u), lanes);
-    const __m256 x = _mm256_maskload_ps(row + u, in_strip);
-    const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(x, v_zero, _CMP_GT_OQ), _mm256_cmp_ps(x, v_inf, _CMP_LT_OQ)),
-                                    _mm256_cmp_ps(x, v_road, _CMP_GT_OQ));
-    const __m256 close = _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(x, v_d), v_abs), v_tol, _CMP_LE_OQ);
-    const __m256 near = _mm256_and_ps(_mm256_cmp_ps(x, v_d, _CMP_LT_OQ), _mm256_cmp_ps(x, v_near, _CMP_GE_OQ));
-    const __m256 miss = _mm256_andnot_ps(close, ok);
-    c.valid += __builtin_popcount(_mm256_movemask_ps(ok));
-    c.matches += __builtin_popcount(_mm256_movemask_ps(_mm256_and_ps(ok, close)));
-    c.misses += __builtin_popcount(_mm256_movemask_ps(miss));
-    c.far_misses += __builtin_popcount(_mm256_movemask_ps(_mm256_andnot_ps(near, miss)));
-  }
+  const LaneTest test(d, tol, near_lo);
+  for (int u = u0; u < u1; u += 8) test.add(c, _mm256_maskload_ps(row + u, stripLanes(u1 - u)), road_max);
 #else
   for (int u = u0; u < u1; ++u) {
     const float x = row[u];
@@ -74,7 +85,7 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
   const bool bridge = t.near_miss_px > 0.0f && t.max_extension_rows > 0;
   struct Row { int bridged, matches, valid; };
   thread_local std::vector<Row> rows;
-  rows.resize(static_cast<size_t>(foot_row - limit_row + 1));
+  if (bridge) rows.resize(static_cast<size_t>(foot_row - limit_row + 1));
   int bsum = 0;
   const float h = g.height_m;
   const float near_lo = d - t.tolerance_px - t.near_miss_px;
@@ -84,28 +95,17 @@ int segmentTopRow(const cv::Mat& disparity, const GroundModel& g, float ground_t
     sum += c.matches - c.misses;
     bsum += c.matches - c.far_misses;
     if (sum > best) best = sum, best_row = v;
-    rows[static_cast<size_t>(foot_row - v)] = {bsum, c.matches, c.valid};
+    if (bridge) rows[static_cast<size_t>(foot_row - v)] = {bsum, c.matches, c.valid};
   };
 #ifdef __AVX2__
   if (u1 - u0 <= 8 && u1 > u0) {
     // A strip of one register (the default widths): its lane mask and the
-    // constants stay in registers over the rows; misses = valid - matches.
-    const __m256i in_strip = _mm256_cmpgt_epi32(_mm256_set1_epi32(u1 - u0), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    const __m256 v_d = _mm256_set1_ps(d), v_tol = _mm256_set1_ps(t.tolerance_px);
-    const __m256 v_near = _mm256_set1_ps(near_lo), v_zero = _mm256_setzero_ps(), v_inf = _mm256_set1_ps(kInf);
-    const __m256 v_abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    // constants stay in registers over the rows.
+    const __m256i in_strip = stripLanes(u1 - u0);
+    const LaneTest test(d, t.tolerance_px, near_lo);
     for (int v = foot_row; v >= limit_row; --v) {
-      const __m256 x = _mm256_maskload_ps(disparity.ptr<float>(v) + u0, in_strip);
-      const __m256 v_road = _mm256_set1_ps(roadMax(v));
-      const __m256 ok = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(x, v_zero, _CMP_GT_OQ), _mm256_cmp_ps(x, v_inf, _CMP_LT_OQ)),
-                                      _mm256_cmp_ps(x, v_road, _CMP_GT_OQ));
-      const __m256 close = _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(x, v_d), v_abs), v_tol, _CMP_LE_OQ);
-      const __m256 near = _mm256_and_ps(_mm256_cmp_ps(x, v_d, _CMP_LT_OQ), _mm256_cmp_ps(x, v_near, _CMP_GE_OQ));
       RowCounts c;
-      c.valid = __builtin_popcount(_mm256_movemask_ps(ok));
-      c.matches = __builtin_popcount(_mm256_movemask_ps(_mm256_and_ps(ok, close)));
-      c.misses = c.valid - c.matches;
-      c.far_misses = __builtin_popcount(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_or_ps(close, near), ok)));
+      test.add(c, _mm256_maskload_ps(disparity.ptr<float>(v) + u0, in_strip), roadMax(v));
       account(v, c);
     }
   } else
