@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "order_statistic.hpp"
+
 namespace nerv::snv {
 namespace {
 
@@ -37,6 +39,7 @@ DisparityPlane fitDisparityPlane(const std::vector<PlanePoint>& pts, const Stere
   DisparityPlane plane;
   if (pts.size() < 3) return plane;
   std::vector<float> w(pts.size(), 1.0f), res(pts.size()), absres;
+  std::vector<uint32_t> select_scratch;
   double x[3];
   if (start && start->valid) {
     x[0] = start->a;
@@ -52,9 +55,9 @@ DisparityPlane fitDisparityPlane(const std::vector<PlanePoint>& pts, const Stere
                (params.relative ? pts[i].d : 1.0f);
     absres.resize(res.size());
     for (size_t i = 0; i < res.size(); ++i) absres[i] = std::abs(res[i]);
-    const auto mid = absres.begin() + static_cast<long>(absres.size() / 2);
-    std::nth_element(absres.begin(), mid, absres.end());
-    sigma = std::max(params.relative ? params.min_sigma_rel : params.min_sigma_px, 1.4826f * *mid);
+    // The value nth_element would leave at the middle (order_statistic.hpp).
+    const float mad = kthSmallest(absres.data(), absres.size(), absres.size() / 2, select_scratch);
+    sigma = std::max(params.relative ? params.min_sigma_rel : params.min_sigma_px, 1.4826f * mad);
     const float cut = params.tukey_k * sigma;
     for (size_t i = 0; i < res.size(); ++i) {
       const float t = res[i] / cut;
