@@ -79,6 +79,9 @@ Params readParams(ConfigSection& s) {
   s.get("duplicate_min_iou", p.duplicates.min_iou, 0.0, 1.0);
   s.get("duplicate_max_row_offset_px", p.duplicates.max_row_offset_px, 0, 1000);
   s.get("duplicate_max_depth_ratio", p.duplicates.max_depth_ratio, 0.0, 1.0);
+  s.get("pole_part_min_height_m", p.pole_parts.min_height_m, 0.0, 100.0);
+  s.get("pole_part_max_depth_ratio", p.pole_parts.max_depth_ratio, 0.0, 1.0);
+  s.get("pole_part_min_overlap", p.pole_parts.min_overlap, 0.0, 1.0);
   if (p.min_height_m >= p.max_height_m)
     throw ConfigError("config key '" + s.path() + ".min_height_m' must be below max_height_m");
   return p;
@@ -144,13 +147,16 @@ std::vector<Verdict> validate(const std::vector<Hypothesis>& hypotheses,
     const auto it = by_id.find(h.id);
     out.push_back(classify(h, it == by_id.end() ? nullptr : it->second, p));
   }
-  if (p.duplicates.min_iou > 0) {
+  if (p.duplicates.min_iou > 0 || p.pole_parts.min_height_m > 0) {
     std::vector<int> normals(hypotheses.size(), 0);
     for (size_t i = 0; i < hypotheses.size(); ++i) {
       const auto it = by_id.find(hypotheses[i].id);
       if (it != by_id.end()) normals[i] = std::max(0, it->second->num_normals);
     }
     removeDuplicates(hypotheses, normals, out, p.duplicates);
+    PolePartParams pp = p.pole_parts;
+    pp.max_width_m = p.pole_max_width_m;
+    removePoleParts(hypotheses, normals, out, pp);
   }
   return out;
 }

@@ -6,6 +6,7 @@
 
 #include "config.hpp"
 #include "duplicates.hpp"
+#include "pole_parts.hpp"
 #include "perception_types.hpp"
 
 namespace nerv::validator {
@@ -37,6 +38,9 @@ struct Params {
   // Second boxes on one object (same rows and depth, IoU above min_iou): the
   // one with fewer normals is removed (duplicates.hpp). min_iou 0 = off.
   DuplicateParams duplicates;
+  // Parts of one pole boxed twice (narrow, tall, same columns and depth): the
+  // shorter is removed (pole_parts.hpp); its max_width_m is pole_max_width_m.
+  PolePartParams pole_parts;
 };
 
 Params readParams(ConfigSection& section);
