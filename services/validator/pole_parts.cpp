@@ -7,10 +7,10 @@
 namespace nerv::validator {
 
 int removePoleParts(const std::vector<Hypothesis>& hyps, const std::vector<int>& normals,
-                    std::vector<Verdict>& verdicts, const PolePartParams& p) {
+                    std::vector<Verdict>& verdicts, const PolePartParams& p, float pole_max_width_m) {
   if (!(p.min_height_m > 0) || hyps.size() != verdicts.size() || hyps.size() != normals.size()) return 0;
   auto poleLike = [&](const Hypothesis& h) {
-    return h.height_m >= p.min_height_m && h.width_m > 0 && h.width_m < p.max_width_m && h.z_m > 0;
+    return h.height_m >= p.min_height_m && h.width_m > 0 && h.width_m < pole_max_width_m && h.z_m > 0;
   };
   // i is the part of j: shorter, or as tall with fewer normals (then the later one).
   auto partOf = [&](size_t i, size_t j) {

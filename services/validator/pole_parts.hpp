@@ -19,15 +19,15 @@ namespace nerv::validator {
 
 struct PolePartParams {
   float min_height_m = 2.5f;      // both boxes at least this tall [m] (a road user is not); 0 = off
-  float max_width_m = 1.2f;       // both narrower than this [m] (the validator's pole_max_width_m)
   float max_depth_ratio = 0.15f;  // depths this close, relative to the nearer
   float min_overlap = 0.5f;       // shared columns over the narrower box's width
 };
 
-// verdicts[i] belongs to hypotheses[i]; normals[i] is its number of normals.
+// verdicts[i] belongs to hypotheses[i]; normals[i] is its number of normals;
+// pole_max_width_m is the validator's (what a pole is for its height check).
 // Removed ones get the reason "part of the pole of hypothesis N (...)".
 // Returns how many were removed.
 int removePoleParts(const std::vector<Hypothesis>& hypotheses, const std::vector<int>& normals,
-                    std::vector<Verdict>& verdicts, const PolePartParams& params);
+                    std::vector<Verdict>& verdicts, const PolePartParams& params, float pole_max_width_m);
 
 }  // namespace nerv::validator

@@ -154,9 +154,7 @@ std::vector<Verdict> validate(const std::vector<Hypothesis>& hypotheses,
       if (it != by_id.end()) normals[i] = std::max(0, it->second->num_normals);
     }
     removeDuplicates(hypotheses, normals, out, p.duplicates);
-    PolePartParams pp = p.pole_parts;
-    pp.max_width_m = p.pole_max_width_m;
-    removePoleParts(hypotheses, normals, out, pp);
+    removePoleParts(hypotheses, normals, out, p.pole_parts, p.pole_max_width_m);
   }
   return out;
 }

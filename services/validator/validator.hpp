@@ -39,7 +39,7 @@ struct Params {
   // one with fewer normals is removed (duplicates.hpp). min_iou 0 = off.
   DuplicateParams duplicates;
   // Parts of one pole boxed twice (narrow, tall, same columns and depth): the
-  // shorter is removed (pole_parts.hpp); its max_width_m is pole_max_width_m.
+  // shorter is removed (pole_parts.hpp); narrow means below pole_max_width_m.
   PolePartParams pole_parts;
 };
 

@@ -34,7 +34,7 @@ TEST(validatorPoleParts, TheShorterBoxesOfOnePoleGo) {
                                      box(29, 1017, 13, 33, 267, 12.0f, 4.43f, 0.55f),
                                      box(30, 1024, 3, 35, 265, 13.4f, 4.93f, 0.65f)};
   std::vector<Verdict> v = keptObjects(3);
-  EXPECT_EQ(removePoleParts(h, {249, 259, 241}, v, PolePartParams{}), 2);
+  EXPECT_EQ(removePoleParts(h, {249, 259, 241}, v, PolePartParams{}, 1.2f), 2);
   EXPECT_FALSE(v[0].kept);
   EXPECT_FALSE(v[1].kept);
   EXPECT_TRUE(v[2].kept);
@@ -45,7 +45,7 @@ TEST(validatorPoleParts, TheShorterBoxesOfOnePoleGo) {
 // Both boxes stay kept.
 void expectNoPart(const Hypothesis& a, const Hypothesis& b, const char* what) {
   std::vector<Verdict> v = keptObjects(2);
-  EXPECT_EQ(removePoleParts({a, b}, {100, 80}, v, PolePartParams{}), 0) << what;
+  EXPECT_EQ(removePoleParts({a, b}, {100, 80}, v, PolePartParams{}, 1.2f), 0) << what;
   EXPECT_TRUE(v[0].kept && v[1].kept) << what;
 }
 
@@ -64,17 +64,17 @@ TEST(validatorPoleParts, OnlyKeptBoxesCountAndZeroTurnsItOff) {
   // The taller one was removed already (say as an error): the shorter is no part of it.
   std::vector<Verdict> v = keptObjects(2);
   v[0].kept = false;
-  EXPECT_EQ(removePoleParts(h, {100, 90}, v, PolePartParams{}), 0);
+  EXPECT_EQ(removePoleParts(h, {100, 90}, v, PolePartParams{}, 1.2f), 0);
   EXPECT_TRUE(v[1].kept);
   PolePartParams off;
   off.min_height_m = 0.0f;
   v = keptObjects(2);
-  EXPECT_EQ(removePoleParts(h, {100, 90}, v, off), 0);
+  EXPECT_EQ(removePoleParts(h, {100, 90}, v, off, 1.2f), 0);
   // Same height: the one with fewer normals is the part.
   const std::vector<Hypothesis> same = {box(1, 500, 50, 20, 200, 15.0f, 5.0f, 0.4f),
                                         box(2, 502, 50, 16, 200, 15.0f, 5.0f, 0.35f)};
   v = keptObjects(2);
-  EXPECT_EQ(removePoleParts(same, {80, 90}, v, PolePartParams{}), 1);
+  EXPECT_EQ(removePoleParts(same, {80, 90}, v, PolePartParams{}, 1.2f), 1);
   EXPECT_FALSE(v[0].kept);
   EXPECT_TRUE(v[1].kept);
 }
