@@ -537,6 +537,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
                         });
       if (!tall_single && !post) continue;
     }
+    if (!tower[gi] && isLowRun(g, cam, p.low_runs)) continue;  // a rail or kerb along the road (low_runs.hpp)
     int x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
     int y0 = g.front()->top_row, y1 = g.front()->bottom_row;
     disp.clear();

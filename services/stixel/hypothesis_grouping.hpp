@@ -14,6 +14,7 @@
 #include "occluded_sides.hpp"
 #include "overhang_cut.hpp"
 #include "post_sides.hpp"
+#include "low_runs.hpp"
 #include "roof_pieces.hpp"
 #include "side_slivers.hpp"
 #include "perception_types.hpp"
@@ -50,6 +51,7 @@ struct GroupingParams {
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
   SideSliverParams side_slivers;       // a narrow piece of a vehicle's receding side folds into it (side_slivers.hpp)
   RoofPieceParams roof_pieces;         // a small piece stacked on a vehicle's roof line, inside its box, is dropped (roof_pieces.hpp)
+  LowRunParams low_runs;               // a low structure receding along the road gives no hypothesis (low_runs.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
   BlendedTopParams blended_top;        // a narrow far box raised over its head read as a blend (blended_tops.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)

@@ -247,6 +247,9 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.side_slivers.length_per_height = params.side_length_per_height;
   gp.side_slivers.column_width_px = params.column_width_px;
   gp.roof_pieces = roofPieceParams(params);
+  gp.low_runs.max_height_m = params.low_run_max_height_m;
+  gp.low_runs.min_depth_span_m = params.low_run_min_depth_span_m;
+  gp.low_runs.min_stixels = params.low_run_min_stixels;
   gp.overhang.min_reach_m = params.overhang_min_reach_m;
   gp.overhang.min_fill = params.overhang_min_fill;
   gp.overhang.min_height_m = params.overhang_min_height_m;

@@ -106,6 +106,9 @@ Params readParams(ConfigSection& c) {
   c.get("roof_piece_max_stixels", p.roof_piece_max_stixels, 0, 100);
   c.get("roof_piece_max_gap_px", p.roof_piece_max_gap_px, 0, 50);
   c.get("roof_piece_top_tolerance_px", p.roof_piece_top_tolerance_px, 0, 50);
+  c.get("low_run_max_height_m", p.low_run_max_height_m, 0.0, 10.0);
+  c.get("low_run_min_depth_span_m", p.low_run_min_depth_span_m, 0.0, 200.0);
+  c.get("low_run_min_stixels", p.low_run_min_stixels, 1, 1000);
   c.get("overhang_min_reach_m", p.overhang_min_reach_m, 0.0, 10.0);
   c.get("overhang_min_fill", p.overhang_min_fill, 0.01, 1.0);
   c.get("overhang_min_height_m", p.overhang_min_height_m, 0.0, 10.0);
