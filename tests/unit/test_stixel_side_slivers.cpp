@@ -73,6 +73,25 @@ TEST(stixelSideSlivers, ALowPieceBesideAVanIsDropped) {
   EXPECT_EQ(hs[0].num_stixels, 13);
 }
 
+// highway seed 23 frame 13: a truck right of the image centre, its rear at
+// 21.6-22.3 m (u 685-770, 3.75 m), the last four strips of its left side at
+// 27.1-30.5 m (u 665-680), beyond the grouping's gap: four strips, 0.6 m (here
+// flat within noise, as the van's above, so that the side join does not take them).
+TEST(stixelSideSlivers, ATrucksFourStripSideFoldsIntoItsBox) {
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st;
+  const float side[] = {27.4f, 27.2f, 27.5f, 27.3f};
+  for (int k = 0; k < 4; ++k) st.push_back(stixelAt(cam, 665 + 5 * k, side[k], 3.6f));
+  for (int k = 0; k < 18; ++k) st.push_back(stixelAt(cam, 685 + 5 * k, 22.0f, 3.75f));
+  GroupingParams three = defaults();
+  three.side_slivers.max_stixels = 3;
+  EXPECT_EQ(groupStixels(st, cam, three).size(), 2u) << "three strips at most: the side is a box of its own";
+  const auto one = groupStixels(st, cam, defaults());
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].box.x, 665);
+  EXPECT_EQ(one[0].box.x + one[0].box.w, 775);
+}
+
 TEST(stixelSideSlivers, RoadUsersAndCarsBesideACarKeepTheirBoxes) {
   const StereoCamera cam = kittiLikeCamera();
   // A car (1.45 m, 10 strips at 20 m) left of the image centre.
@@ -135,7 +154,7 @@ TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
   expectRejected("side_sliver_max_stixels", -1);
   expectRejected("side_sliver_max_stixels", 101);
   expectRejected("side_sliver_min_fold_share", 1.5);
-  EXPECT_EQ(Params{}.side_sliver_max_stixels, 3);
+  EXPECT_EQ(Params{}.side_sliver_max_stixels, 4);
 }
 
 }  // namespace
