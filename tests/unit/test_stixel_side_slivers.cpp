@@ -108,6 +108,8 @@ TEST(stixelSideSlivers, RoadUsersAndCarsBesideACarKeepTheirBoxes) {
   const Case cases[] = {
       // Towards the centre, 2 m farther: taller than the car.
       {"pedestrian beside the car", 470, 22.0f, 1.75f},
+      // 0.2 m above the car (what the height step cuts by): above the 0.15 m tolerance.
+      {"road user 0.2 m above the car", 470, 22.0f, 1.65f},
       // On the car's outward side (left of it): no receding side there.
       {"low piece on the outward side", 405, 22.0f, 1.2f},
       // Beyond a car's length behind it (6 m): the next car of a row.
