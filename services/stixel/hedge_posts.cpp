@@ -2,15 +2,9 @@
 
 #include <algorithm>
 
+#include "stixel_height.hpp"
+
 namespace nerv::stixel {
-
-namespace {
-
-float visibleHeight(const Stixel& s, const StereoCamera& cam) {
-  return static_cast<float>((s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy);
-}
-
-}  // namespace
 
 std::pair<size_t, size_t> findHedgePost(const std::vector<const Stixel*>& g, const StereoCamera& cam,
                                         const HedgePostParams& p) {
@@ -22,15 +16,15 @@ std::pair<size_t, size_t> findHedgePost(const std::vector<const Stixel*>& g, con
     if (s->bottom_row >= cam.height - 2) return none;  // cut by the image border: not its silhouette
   const size_t n = g.size();
   for (size_t k = 0; k < n;) {
-    if (visibleHeight(*g[k], cam) < p.min_height_m) {
+    if (stixelHeightM(*g[k], cam) < p.min_height_m) {
       ++k;
       continue;
     }
     size_t e = k;
     float low = 1e9f;
     int top = g[k]->top_row;
-    while (e < n && visibleHeight(*g[e], cam) >= p.min_height_m) {
-      low = std::min(low, visibleHeight(*g[e], cam));
+    while (e < n && stixelHeightM(*g[e], cam) >= p.min_height_m) {
+      low = std::min(low, stixelHeightM(*g[e], cam));
       top = std::min(top, g[e]->top_row);
       ++e;
     }
@@ -48,12 +42,12 @@ std::pair<size_t, size_t> findHedgePost(const std::vector<const Stixel*>& g, con
     if ((inside || rest_outward) && width_m <= p.max_width_m && g[k]->depth_m <= p.max_distance_m) {
       bool ok = true;
       for (size_t j = 0; j < n && ok; ++j)
-        if ((j < k || j >= e) && visibleHeight(*g[j], cam) * p.min_ratio > low) ok = false;
+        if ((j < k || j >= e) && stixelHeightM(*g[j], cam) * p.min_ratio > low) ok = false;
       for (size_t j : {k - 1, e}) {
         if (j >= n) continue;  // k - 1 wrapped (run at the left end) or e == n: no neighbour there
         const Stixel& nb = *g[j];
         const float step_m = static_cast<float>((nb.top_row - top) * nb.depth_m / cam.fy);
-        if (visibleHeight(nb, cam) * p.min_ratio > low || step_m < p.min_step_m) ok = false;
+        if (stixelHeightM(nb, cam) * p.min_ratio > low || step_m < p.min_step_m) ok = false;
       }
       if (ok) return {k, e};
     }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "nearest_per_strip.hpp"
+#include "stixel_height.hpp"
 
 namespace nerv::stixel {
 
@@ -25,11 +26,6 @@ bool joins(const Stixel& a, const Stixel& b, const StereoCamera& cam, const Grou
 size_t root(std::vector<size_t>& parent, size_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
-}
-
-// Visible metric height of a stixel.
-float heightOf(const Stixel& s, const StereoCamera& cam) {
-  return static_cast<float>((s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy);
 }
 
 // A post or pole standing in a hedge, on a kerb or a lawn edge joins their
@@ -56,7 +52,7 @@ void splitTowers(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
       continue;
     }
     h.clear();
-    for (const Stixel* s : g) h.push_back(heightOf(*s, cam));
+    for (const Stixel* s : g) h.push_back(stixelHeightM(*s, cam));
     std::vector<float> sorted = h;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const float median = sorted[sorted.size() / 2];
@@ -174,15 +170,15 @@ void splitStructures(std::vector<std::vector<const Stixel*>>& groups, std::vecto
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const auto& g = groups[gi];
     size_t tall = 0;
-    for (const Stixel* s : g) tall += heightOf(*s, cam) >= p.structure_min_height_m ? 1 : 0;
+    for (const Stixel* s : g) tall += stixelHeightM(*s, cam) >= p.structure_min_height_m ? 1 : 0;
     if (tower[gi] || tall == 0 || tall == g.size()) {
       out.push_back(g), out_tower.push_back(tower[gi]), out_clear.push_back(clear_above[gi]);
       continue;
     }
     for (size_t k = 0; k < g.size();) {
-      const bool is_tall = heightOf(*g[k], cam) >= p.structure_min_height_m;
+      const bool is_tall = stixelHeightM(*g[k], cam) >= p.structure_min_height_m;
       size_t e = k + 1;
-      while (e < g.size() && (heightOf(*g[e], cam) >= p.structure_min_height_m) == is_tall) ++e;
+      while (e < g.size() && (stixelHeightM(*g[e], cam) >= p.structure_min_height_m) == is_tall) ++e;
       out.emplace_back(g.begin() + k, g.begin() + e);
       out_tower.push_back(false), out_clear.push_back(kNoSurround);
       k = e;
@@ -242,7 +238,7 @@ bool runEndsAtFace(const std::vector<const Stixel*>& s, size_t c, size_t face_ru
   auto contiguous = [&](size_t a, size_t b) { return contiguousStrips(s, a, b); };
   auto medianHeight = [&](size_t a, size_t b) {
     std::vector<float> h;
-    for (size_t k = a; k < b; ++k) h.push_back(heightOf(*s[k], cam));
+    for (size_t k = a; k < b; ++k) h.push_back(stixelHeightM(*s[k], cam));
     std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
     return h[h.size() / 2];
   };
@@ -260,7 +256,7 @@ bool runEndsAtFace(const std::vector<const Stixel*>& s, size_t c, size_t face_ru
     const size_t n = std::min<size_t>(4, r1 - r0);
     const float run_h = run_left ? medianHeight(r1 - n, r1) : medianHeight(r0, r0 + n);
     std::vector<float> fh;  // all strips of the face but one (its edge strip may still be the rail's)
-    for (size_t k = f0; k < f1; ++k) fh.push_back(heightOf(*s[k], cam));
+    for (size_t k = f0; k < f1; ++k) fh.push_back(stixelHeightM(*s[k], cam));
     std::sort(fh.begin(), fh.end());
     const float face_h = fh[fh.size() > 1 ? 1 : 0];
     return face_h >= p.chain_face_min_height_m && face_h >= p.chain_face_min_height_ratio * run_h;
@@ -298,7 +294,7 @@ void splitChains(std::vector<std::vector<const Stixel*>>& groups, std::vector<bo
     if (s.size() < 2 * kRun) continue;
     float zmin = s[0]->depth_m, zmax = zmin;
     std::vector<float> h;
-    for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(heightOf(*x, cam));
+    for (const Stixel* x : s) zmin = std::min(zmin, x->depth_m), zmax = std::max(zmax, x->depth_m), h.push_back(stixelHeightM(*x, cam));
     std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
     if (zmax - zmin <= std::max(p.side_max_depth_m, p.side_length_per_height * h[h.size() / 2])) continue;
     auto contiguousRun = [&](size_t a, size_t b) { return contiguousStrips(s, a, b); };
@@ -386,7 +382,7 @@ void joinSides(std::vector<std::vector<const Stixel*>>& groups, std::vector<bool
         float near_m = b->depth_m;
         for (const Stixel* x : body) near_m = std::min(near_m, x->depth_m);
         const int height_px = b->bottom_row - b->top_row + 1;
-        const float max_length_m = std::max(p.side_max_depth_m, p.side_length_per_height * heightOf(*b, cam));
+        const float max_length_m = std::max(p.side_max_depth_m, p.side_length_per_height * stixelHeightM(*b, cam));
         if (!recedes || far_m - near_m > max_length_m ||
             std::abs(s->top_row - b->top_row) > p.side_top_tolerance * height_px)
           continue;

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 
-namespace nerv::stixel {
+#include "stixel_height.hpp"
 
-float stixelHeightM(const Stixel& s, const StereoCamera& cam) {
-  return static_cast<float>((s.bottom_row - s.top_row + 1) * s.depth_m / cam.fy);
-}
+namespace nerv::stixel {
 
 bool isLowRun(const std::vector<const Stixel*>& group, const StereoCamera& cam, const LowRunParams& p) {
   if (p.max_height_m <= 0.0f || group.empty() || static_cast<int>(group.size()) < std::max(1, p.min_stixels))

@@ -26,9 +26,6 @@ struct LowRunParams {
   int min_stixels = 4;            // ... and at least this many strips: the road's border, no hypothesis
 };
 
-// Visible height of a stixel [m].
-float stixelHeightM(const Stixel& s, const StereoCamera& cam);
-
 // True when the group (stixels of one hypothesis) is such a low run.
 bool isLowRun(const std::vector<const Stixel*>& group, const StereoCamera& cam, const LowRunParams& params);
 
