@@ -33,7 +33,9 @@
 // the ground truth (DIR/disp_occ_0) instead of the matcher's disparity: an
 // oracle for what the matcher costs; --oracle MODE takes away one kind of the
 // matcher's errors only (withOracle below). --per-frame lists every hypothesis and
-// miss, and for each false positive the label it overlaps most.
+// miss, and for each false positive the label it overlaps most. --overlay DIR
+// writes DIR/<frame>.png (boxes over the left image) and DIR/<frame>_disparity.png
+// (the disparity the stages saw, uint16 in 1/256 px as on the wire, 0 = invalid).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -602,6 +604,8 @@ int main(int argc, char** argv) {
                       cv::Point(b.x, b.y - 2), cv::FONT_HERSHEY_PLAIN, 0.8, col, 1);
         }
         cv::imwrite(o.overlay + "/" + f.name + ".png", img);
+        // The disparity the stages saw, as the wire carries it (uint16, 1/256 px, 0 = invalid).
+        cv::imwrite(o.overlay + "/" + f.name + "_disparity.png", wireFixed(disp));
       }
     }
 
