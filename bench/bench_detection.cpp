@@ -4,7 +4,7 @@
 //   build/bin/bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]
 //       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
 //       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]
-//       [--true-disparity | --oracle MODE]
+//       [--difficulty easy|moderate|hard] [--true-disparity | --oracle MODE]
 //
 // Per frame: disparity (the stereo_matcher's library and defaults, cached
 // as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
@@ -25,7 +25,9 @@
 //   - ground-model and SNV pose against DIR/extrinsics.txt (or --extrinsics);
 //   - ms per frame of each stage.
 // --visible counts only labels with occlusion < 2 and truncation < 0.5 (others
-// are ignored: neither hit nor miss). --max-distance M ignores the labels
+// are ignored: neither hit nor miss). --difficulty applies a KITTI benchmark
+// difficulty as nerv_eval_detections does (tools/lib/detection_eval.hpp).
+// --max-distance M ignores the labels
 // farther than M and the hypotheses farther than M (z_m) that match no counted
 // label (tools/lib/detection_eval.hpp); --count-far-detections counts those
 // hypotheses as false positives, as before 2026-12-02's sixth session. --set overrides a config key, e.g.
@@ -70,7 +72,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Options {
-  std::string data, labels, config, cache = "/tmp/nerv_bench_cache", extrinsics, overlay;
+  std::string data, labels, config, cache = "/tmp/nerv_bench_cache", extrinsics, overlay, difficulty;
   std::vector<std::pair<std::string, std::string>> sets;
   float max_distance_m = 1e9f;
   bool count_far_detections = false;  // unmatched detections beyond max_distance_m are false positives
@@ -85,6 +87,7 @@ struct Options {
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible] [--count-far-detections]\n"
                "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
+               "       [--difficulty easy|moderate|hard]\n"
                "       [--true-disparity | --oracle MODE]\n");
   std::exit(2);
 }
@@ -107,6 +110,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--extrinsics") o.extrinsics = value();
     else if (a == "--overlay") o.overlay = value();
     else if (a == "--visible") o.visible = true;
+    else if (a == "--difficulty") o.difficulty = value();
     else if (a == "--per-frame") o.per_frame = true;
     else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
@@ -347,6 +351,8 @@ int main(int argc, char** argv) {
     EvalParams ep;
     ep.max_distance_m = o.max_distance_m;
     ep.visible_only = o.visible;
+    if (!o.difficulty.empty())
+      if (const std::string why = setKittiDifficulty(o.difficulty, ep); !why.empty()) throw std::runtime_error(why);
     ep.limit_detections = !o.count_far_detections;
     EvalCounts all, kept;
     DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
@@ -431,7 +437,9 @@ int main(int argc, char** argv) {
       if (!fs::exists(label_path)) continue;
       const std::vector<KittiLabel> labels = readKittiLabels(label_path);
       // Hidden objects (--visible: ep.visible_only) count neither way.
-      auto hidden = [&](const KittiLabel& l) { return ep.visible_only && l.type != "DontCare" && isHidden(l); };
+      auto hidden = [&](const KittiLabel& l) {
+        return l.type != "DontCare" && ((ep.visible_only && isHidden(l)) || isBeyondDifficulty(l, ep));
+      };
 
       std::vector<EvalBox> hyps, val;
       std::vector<size_t> val_index;
@@ -626,12 +634,12 @@ int main(int argc, char** argv) {
     if (o.oracle == "truth") std::printf("disparity: the rendered disparity (--true-disparity), not the matcher's\n");
     else if (!o.oracle.empty()) std::printf("disparity: the matcher's with the oracle '%s' applied\n", o.oracle.c_str());
     if (!o.labels.empty()) {
-      std::printf("IoU > %.2f%s%s\n", ep.min_iou,
+      std::printf("IoU > %.2f%s%s%s\n", ep.min_iou,
                   o.max_distance_m < 1e8 ? (", labels within " + std::to_string(int(o.max_distance_m)) + " m" +
                                              (o.count_far_detections ? " (all hypotheses counted)"
                                                                      : " (unmatched hypotheses beyond it ignored)")).c_str()
                                         : "",
-                  o.visible ? ", occlusion < 2 and truncation < 0.5 only" : "");
+                  o.visible ? ", occlusion < 2 and truncation < 0.5 only" : "", difficultyText(ep).c_str());
       std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
         std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn, c.precision(),

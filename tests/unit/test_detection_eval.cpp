@@ -157,3 +157,58 @@ TEST(toolsDetectionEval, VisibleOnlyIgnoresHiddenAndTruncatedObjects) {
   EXPECT_EQ(c_vis.fn, 0);
   EXPECT_EQ(matchDetections(boxes, labels, visible)[1].outcome, MatchOutcome::Ignored);
 }
+
+TEST(toolsDetectionEval, KittiDifficultiesFollowTheDevkitLimits) {
+  EvalParams easy, moderate, hard, none;
+  EXPECT_EQ(setKittiDifficulty("easy", easy), "");
+  EXPECT_EQ(setKittiDifficulty("moderate", moderate), "");
+  EXPECT_EQ(setKittiDifficulty("hard", hard), "");
+  EXPECT_NE(setKittiDifficulty("medium", none).find("medium"), std::string::npos);
+  EXPECT_EQ(none.min_height_px, 0.0f);  // an unknown name leaves the params alone
+  EXPECT_EQ(none.difficulty, "");
+  EXPECT_EQ(moderate.difficulty, "moderate");
+  // Heights as the devkit measures them: y2 - y1 (the last row minus the first).
+  const KittiLabel tall = label("Car", 0, 0, 10, 40), low = label("Car", 0, 0, 10, 39), tiny = label("Pole", 0, 0, 2, 24);
+  KittiLabel partly = label("Car", 0, 0, 10, 50), largely = partly, cut = partly, unknown = partly;
+  partly.occluded = 1;
+  largely.occluded = 2;
+  unknown.occluded = 3;
+  cut.truncated = 0.4f;
+  EXPECT_TRUE(isCounted(tall, easy));
+  EXPECT_FALSE(isCounted(low, easy));   // 39 px < 40
+  EXPECT_TRUE(isCounted(low, moderate));
+  EXPECT_FALSE(isCounted(tiny, hard));  // 24 px < 25
+  EXPECT_TRUE(isCounted(tiny, none));
+  EXPECT_FALSE(isCounted(partly, easy));
+  EXPECT_TRUE(isCounted(partly, moderate));
+  EXPECT_FALSE(isCounted(largely, moderate));
+  EXPECT_TRUE(isCounted(largely, hard));
+  EXPECT_FALSE(isCounted(unknown, hard));
+  EXPECT_TRUE(isCounted(unknown, none));
+  EXPECT_FALSE(isCounted(cut, moderate));  // truncated 0.4 > 0.3
+  EXPECT_TRUE(isCounted(cut, hard));
+}
+
+TEST(toolsDetectionEval, DetectionsBelowTheMinimumHeightCountOnlyWhenTheyMatch) {
+  EvalParams moderate;
+  ASSERT_EQ(setKittiDifficulty("moderate", moderate), "");
+  const std::vector<KittiLabel> labels = {label("Car", 0, 0, 20, 30), label("Pole", 100, 0, 101, 20)};
+  // rows [0, 31) match the car; a 25-row box (y2 - 1 - y1 = 24) in empty space and one on
+  // the 21-row pole (ignored: too low) count neither way; a 26-row box in empty space is a
+  // false positive
+  const std::vector<EvalBox> boxes = {{0, 0, 21, 31}, {50, 0, 60, 25}, {100, 0, 102, 21}, {200, 0, 210, 26}};
+  const std::vector<DetectionMatch> m = matchDetections(boxes, labels, moderate);
+  EXPECT_EQ(m[0].outcome, MatchOutcome::TruePositive);
+  EXPECT_EQ(m[1].outcome, MatchOutcome::Ignored);
+  EXPECT_EQ(m[2].outcome, MatchOutcome::Ignored);
+  EXPECT_EQ(m[3].outcome, MatchOutcome::FalsePositive);
+  const EvalCounts c = countMatches(m, labels, moderate);
+  EXPECT_EQ(c.objects, 1);
+  EXPECT_EQ(c.fn, 0);
+  EXPECT_EQ(c.fp, 1);
+  // Without a difficulty the pole is counted and missed, and both boxes in empty space are false positives.
+  const EvalCounts all = evaluateFrame(boxes, labels, EvalParams{});
+  EXPECT_EQ(all.objects, 2);
+  EXPECT_EQ(all.tp, 2);
+  EXPECT_EQ(all.fp, 2);
+}

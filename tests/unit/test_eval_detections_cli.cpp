@@ -190,3 +190,29 @@ TEST_F(toolsEvalDetectionsCli, DistanceLimitIgnoresUnmatchedDetectionsBeyondIt) 
   EXPECT_NE(old.find("distance-limited (objects only)"), std::string::npos) << old;
   EXPECT_NE(old.find("stixel + SNV 1 1 2 0 0.333 1.000 0.500"), std::string::npos) << old;
 }
+
+TEST_F(toolsEvalDetectionsCli, DifficultyIgnoresLowAndHiddenObjectsAndLowBoxes) {
+  // A car 79 px tall found, a pole 20 px tall found, a partly hidden car (occluded 1) missed,
+  // and a 15 px box on nothing.
+  std::ofstream(tmp / "labels" / "000005.txt")
+      << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 20.00 -1.5708\n"
+      << "Pole 0.00 0 0 500.00 160.00 503.00 180.00 -1 -1 -1 -1000 -1000 38.00 0\n"
+      << "Car 0.00 1 -1.57 300.00 100.00 399.00 179.00 1.50 1.80 4.00 2.00 1.65 20.00 -1.5708\n";
+  writeLog(tmp / "run.lcmlog", {frame(5, {detection(100, 100, 100, 80, true, 18.5f, 18.1f),
+                                          detection(500, 160, 4, 21, true, 38.0f, 38.0f),
+                                          detection(700, 100, 10, 15, true, 30.0f, 30.0f)})});
+  // Without a difficulty: 3 objects, TP 2, FP 1, FN 1.
+  EXPECT_NE(squeeze(run(base() + " 2>&1")).find("stixel + SNV 3 2 1 1 0.667 0.667 0.667"), std::string::npos);
+  // moderate: the pole (20 px) is ignored and so is the low box on nothing; the partly hidden car counts.
+  const std::string moderate = squeeze(run(base() + " --difficulty moderate 2>&1"));
+  EXPECT_NE(moderate.find("KITTI moderate (height >= 25 px, occluded <= 1, truncated <= 0.3)"), std::string::npos)
+      << moderate;
+  EXPECT_NE(moderate.find("stixel + SNV 2 1 0 1 1.000 0.500 0.667"), std::string::npos) << moderate;
+  // easy: only the fully visible car counts.
+  EXPECT_NE(squeeze(run(base() + " --difficulty easy 2>&1")).find("stixel + SNV 1 1 0 0 1.000 1.000 1.000"),
+            std::string::npos);
+  EXPECT_NE(run(base() + " --difficulty hard --json").find("\"difficulty\":\"hard\""), std::string::npos);
+  // An unknown difficulty is a one-line error naming it.
+  EXPECT_NE(run(base() + " --difficulty medium 2>&1; echo rc=$?").find("unknown difficulty 'medium' (easy, moderate or hard)"),
+            std::string::npos);
+}

@@ -1,13 +1,16 @@
 // nerv_eval_detections: the reference method's table from a recorded run.
 //
 //   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
-//                        [--min-iou 0.5] [--visible] [--count-far-detections]
-//                        [--extrinsics FILE] [--json]
+//                        [--min-iou 0.5] [--visible] [--difficulty easy|moderate|hard]
+//                        [--count-far-detections] [--extrinsics FILE] [--json]
 //
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
 // --visible ignores largely hidden objects (occluded 2) and those half outside
 // the image (truncated >= 0.5), as bench_detection --visible does.
+// --difficulty applies one of the KITTI object benchmark's difficulties (devkit
+// limits on label height, occlusion and truncation; unmatched detections lower
+// than its minimum height count neither way; tools/lib/detection_eval.hpp).
 // --max-distance M limits both sides: objects farther than M are ignored, and
 // so are detections farther than M (their z_m) that match no counted object,
 // as the KITTI devkit ignores detections below its minimum height;
@@ -67,6 +70,9 @@ Options parse(int argc, char** argv) {
     else if (a == "--min-iou") o.params.min_iou = std::stof(value());
     else if (a == "--json") o.json = true;
     else if (a == "--visible") o.params.visible_only = true;
+    else if (a == "--difficulty") {
+      if (const std::string why = setKittiDifficulty(value(), o.params); !why.empty()) throw std::runtime_error(why);
+    }
     else if (a == "--count-far-detections") o.params.limit_detections = false;
     else if (a == "--classes") {
       std::stringstream list(value());
@@ -175,6 +181,7 @@ int main(int argc, char** argv) {
       j.field("frames", frames);
       j.field("frames_without_labels", unlabelled);
       j.field("visible_only", o.params.visible_only);
+      j.field("difficulty", o.params.difficulty);
       j.field("far_detections_ignored", farDetectionsIgnored(o.params));
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel_only", all}, {"stixel_snv", kept}}) {
         j.key(name);
@@ -235,12 +242,13 @@ int main(int argc, char** argv) {
       std::printf("%s\n", j.str().c_str());
       return 0;
     }
-    std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s%s\n", frames, unlabelled,
+    std::printf("frames evaluated: %d (%d without labels), IoU > %.2f%s%s%s\n", frames, unlabelled,
                 o.params.min_iou,
                 farDetectionsIgnored(o.params)     ? ", distance-limited (objects and unmatched detections)"
                 : o.params.max_distance_m < 1e8    ? ", distance-limited (objects only)"
                                                    : "",
-                o.params.visible_only ? ", occlusion < 2 and truncation < 0.5 only" : "");
+                o.params.visible_only ? ", occlusion < 2 and truncation < 0.5 only" : "",
+                difficultyText(o.params).c_str());
     std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
     for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
       std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn,

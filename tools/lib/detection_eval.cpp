@@ -1,6 +1,7 @@
 #include "detection_eval.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace nerv {
 float area(const EvalBox& b) { return std::max(0.f, b.x2 - b.x1) * std::max(0.f, b.y2 - b.y1); }
@@ -25,9 +26,37 @@ float iou(const EvalBox& a, const EvalBox& b) {
 
 bool isHidden(const KittiLabel& l) { return l.occluded >= 2 || l.truncated >= 0.5f; }
 
+std::string setKittiDifficulty(const std::string& name, EvalParams& params) {
+  struct Level { const char* name; float min_height; int max_occlusion; float max_truncation; };
+  static const Level levels[] = {{"easy", 40, 0, 0.15f}, {"moderate", 25, 1, 0.3f}, {"hard", 25, 2, 0.5f}};
+  for (const Level& l : levels) {
+    if (name != l.name) continue;
+    params.min_height_px = l.min_height;
+    params.max_occlusion = l.max_occlusion;
+    params.max_truncation = l.max_truncation;
+    params.difficulty = l.name;
+    return "";
+  }
+  return "unknown difficulty '" + name + "' (easy, moderate or hard)";
+}
+
+std::string difficultyText(const EvalParams& p) {
+  if (p.difficulty.empty()) return "";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, ", KITTI %s (height >= %.0f px, occluded <= %d, truncated <= %.2g)",
+                p.difficulty.c_str(), p.min_height_px, p.max_occlusion, p.max_truncation);
+  return buf;
+}
+
+bool isBeyondDifficulty(const KittiLabel& l, const EvalParams& params) {
+  return l.occluded > params.max_occlusion || l.truncated > params.max_truncation ||
+         l.y2 - l.y1 < params.min_height_px;
+}
+
 bool isCounted(const KittiLabel& l, const EvalParams& params) {
   return l.type != "DontCare" && (params.classes.empty() || params.classes.count(l.type)) &&
-         !(l.z > 0 && l.z > params.max_distance_m) && !(params.visible_only && isHidden(l));
+         !(l.z > 0 && l.z > params.max_distance_m) && !(params.visible_only && isHidden(l)) &&
+         !isBeyondDifficulty(l, params);
 }
 
 bool farDetectionsIgnored(const EvalParams& params) {
@@ -69,6 +98,8 @@ std::vector<DetectionMatch> matchDetections(const std::vector<EvalBox>& detectio
     // Beyond the distance limit (the detection's own depth) and matching no
     // counted object: outside the evaluated range, like the objects there.
     bool neutral = farDetectionsIgnored(params) && d.z > 0 && d.z > params.max_distance_m;
+    // Lower than the difficulty's minimum height (its last row is y2 - 1), as the devkit ignores it.
+    neutral = neutral || (params.min_height_px > 0 && d.y2 - 1 - d.y1 < params.min_height_px);
     for (const int g : ignored) neutral = neutral || iou(d, labelBox(labels[g])) > params.min_iou;
     for (const int g : dontcare) {
       const EvalBox b = labelBox(labels[g]);

@@ -31,7 +31,21 @@ struct EvalParams {
   std::set<std::string> classes;      // counted types; empty = every type but DontCare
   bool visible_only = false;          // objects largely hidden (occluded 2) or half outside the image
                                       // (truncated >= 0.5) are ignored, as by `--visible`
+  // A KITTI devkit difficulty (setKittiDifficulty, `--difficulty`): objects more occluded, more
+  // truncated or lower than these are ignored, and so are unmatched detections lower than
+  // min_height_px. Heights as the devkit measures them: y2 - y1 with y2 the box's last row.
+  int max_occlusion = 99;             // label `occluded` field (0 visible .. 3 unknown); 99 = no limit
+  float max_truncation = 99.0f;       // label `truncated` field (0 .. 1); 99 = no limit
+  float min_height_px = 0.0f;         // 0 = no limit
+  std::string difficulty;             // the name set by setKittiDifficulty, for headers; empty = none
 };
+
+// The KITTI object benchmark's difficulties (devkit evaluate_object.cpp):
+// easy: height >= 40 px, fully visible (occluded 0), truncated <= 0.15;
+// moderate: >= 25 px, occluded <= 1, truncated <= 0.3;
+// hard: >= 25 px, occluded <= 2, truncated <= 0.5.
+// Returns an error naming the problem for any other name (params unchanged).
+std::string setKittiDifficulty(const std::string& name, EvalParams& params);
 
 struct EvalCounts {
   int objects = 0, tp = 0, fp = 0, fn = 0, ignored = 0;
@@ -68,6 +82,11 @@ bool isCounted(const KittiLabel& label, const EvalParams& params);
 bool farDetectionsIgnored(const EvalParams& params);
 // Largely hidden or half outside the image (what visible_only ignores).
 bool isHidden(const KittiLabel& label);
+// ", KITTI moderate (height >= 25 px, occluded <= 1, truncated <= 0.3)" for the tools'
+// headers, or "" when no difficulty is set.
+std::string difficultyText(const EvalParams& params);
+// Outside the difficulty of params: more occluded, more truncated or lower than its limits.
+bool isBeyondDifficulty(const KittiLabel& label, const EvalParams& params);
 
 // What became of each detection of a frame: a true positive of label `label`
 // (an index into the labels), a false positive, or ignored (DontCare, or an

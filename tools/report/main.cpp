@@ -1,7 +1,7 @@
 // nerv_report: one self-contained HTML page about a recorded run.
 //
 //   nerv_report LOG --out DIR [--labels DIR] [--extrinsics FILE] [--frame SEQ]
-//               [--worst N] [--max-distance M] [--min-iou X] [--visible] [--count-far-detections]
+//               [--worst N] [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections]
 //
 // Writes DIR/report.html: run summary, pose over time, detections per frame, a
 // frame's pitch histogram with the mode / mean / mean-shift of EXTRINSICS,
@@ -22,7 +22,7 @@ namespace {
 void usage() {
   std::fprintf(stderr,
                "usage: nerv_report LOG --out DIR [--labels DIR] [--extrinsics FILE] [--frame SEQ] [--worst N]\n"
-               "                   [--max-distance M] [--min-iou X] [--visible] [--count-far-detections]\n");
+               "                   [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections]\n");
 }
 
 }  // namespace
@@ -45,6 +45,9 @@ int main(int argc, char** argv) {
       else if (a == "--max-distance") o.eval.max_distance_m = std::stof(value());
       else if (a == "--min-iou") o.eval.min_iou = std::stof(value());
       else if (a == "--visible") o.eval.visible_only = true;
+      else if (a == "--difficulty") {
+        if (const std::string why = setKittiDifficulty(value(), o.eval); !why.empty()) throw std::runtime_error(why);
+      }
       else if (a == "--count-far-detections") o.eval.limit_detections = false;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown flag '" + a + "'");
