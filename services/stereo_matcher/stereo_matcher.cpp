@@ -8,6 +8,7 @@
 
 #include "boundary_snap.hpp"
 #include "gated_mean.hpp"
+#include "near_field.hpp"
 #include "opencv_matchers.hpp"
 #include "own_sgm.hpp"
 
@@ -114,12 +115,55 @@ class ReducedResolution : public StereoMatcher {
   cv::Mat small_left_, small_right_, small_disparity_, small_confidence_;
 };
 
+// Any matcher followed by the near-field match (near_field.hpp): the same
+// algorithm on both views averaged down by 4, disparities [0, 64) there, i.e.
+// [0, 256) full-resolution pixels, fused where the main match cannot reach.
+class NearFieldExtended : public StereoMatcher {
+ public:
+  NearFieldExtended(std::unique_ptr<StereoMatcher> inner, Params p) : inner_(std::move(inner)) {
+    fuse_.scale = kScale;
+    fuse_.reach_px = static_cast<float>(p.min_disparity + p.num_disparities);
+    p.num_disparities = kLevels;
+    p.min_disparity = 0;
+    p.downscale = 1;
+    p.near_field = false;
+    p.speckle_window_size /= kScale * kScale;
+    p.block_size = std::max(3, (p.block_size / kScale) | 1);
+    p.bm_block_size = std::max(5, (p.bm_block_size / kScale) | 1);
+    near_ = createFullResolution(p);
+  }
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
+               cv::Mat& confidence) override {
+    inner_->compute(left, right, disparity, confidence);
+    const cv::Size small((left.cols + kScale - 1) / kScale, (left.rows + kScale - 1) / kScale);
+    // Too small to search 64 levels at a quarter (OpenCV's matchers refuse it): below
+    // 512 x 64 px the main search alone.
+    if (small.width < 2 * kLevels || small.height < 16) return;
+    cv::resize(left, small_left_, small, 0, 0, cv::INTER_AREA);
+    cv::resize(right, small_right_, small, 0, 0, cv::INTER_AREA);
+    near_->compute(small_left_, small_right_, near_disparity_, near_confidence_);
+    fuseNearField(disparity, confidence, near_disparity_, near_confidence_, fuse_);
+  }
+  std::string name() const override { return inner_->name(); }
+
+  static constexpr int kScale = 4, kLevels = 64;
+
+ private:
+  std::unique_ptr<StereoMatcher> inner_, near_;
+  NearFieldParams fuse_;
+  cv::Mat small_left_, small_right_, near_disparity_, near_confidence_;
+};
+
 }  // namespace
 
 std::unique_ptr<StereoMatcher> StereoMatcher::create(const Params& params) {
   checkParams(params);
-  if (params.downscale == 2) return std::make_unique<ReducedResolution>(params);
-  return createFullResolution(params);
+  std::unique_ptr<StereoMatcher> m = params.downscale == 2 ? std::make_unique<ReducedResolution>(params)
+                                                           : createFullResolution(params);
+  // Only where it can add something: it covers disparities up to 256 px (the wire's limit).
+  if (params.near_field && params.min_disparity + params.num_disparities + 4 < 4 * NearFieldExtended::kLevels)
+    m = std::make_unique<NearFieldExtended>(std::move(m), params);
+  return m;
 }
 
 }  // namespace nerv::stereo

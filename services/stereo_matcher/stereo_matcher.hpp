@@ -55,6 +55,10 @@ struct Params {
   int gated_mean_radius = 2;
   double gated_mean_range_px = 0.5;
   double gated_mean_range_rel = 0.05;
+  // A second match at a quarter of the resolution over [0, 256) full-resolution px,
+  // fused where surfaces are nearer than min_disparity + num_disparities reaches
+  // (near_field.hpp, docs/stereo.md "Near field").
+  bool near_field = true;
 };
 
 // First row of nerv_sgm's road band in an image of `rows` rows (rows when there is none).

@@ -51,6 +51,7 @@ void checkParams(const Params& p, const std::string& path) {
                       " must exceed sgm_p1 and keep census bits (" + std::to_string(max_cost) +
                       ") + sgm_p2 <= 255 (8-bit path costs)");
   if (p.threads < 1) throw ConfigError(key(path, "threads") + " must be >= 1");
+
 }
 
 int roadCensusRow(const Params& p, int rows) {
@@ -68,7 +69,8 @@ std::string describeParams(const Params& p) {
     << ";wls=" << p.wls_lambda << '/' << p.wls_sigma << ";census=" << p.census_width << 'x' << p.census_height
     << ";road_census=" << p.road_census_width << 'x' << p.road_census_height << '@' << p.road_census_from
     << ";sgm=" << p.sgm_p1 << '/' << p.sgm_p2 << ";subpixel=" << p.subpixel << ";boundary_snap_px=" << p.boundary_snap_px
-    << ";gated_mean=" << p.gated_mean_radius << '/' << p.gated_mean_range_px << '/' << p.gated_mean_range_rel;
+    << ";gated_mean=" << p.gated_mean_radius << '/' << p.gated_mean_range_px << '/' << p.gated_mean_range_rel
+    << ";near_field=" << p.near_field;
   return s.str();
 }
 
@@ -101,6 +103,7 @@ Params readParams(ConfigSection& c) {
   c.get("gated_mean_radius", p.gated_mean_radius, 0, 7);
   c.get("gated_mean_range_px", p.gated_mean_range_px, 0.0, 16.0);
   c.get("gated_mean_range_rel", p.gated_mean_range_rel, 0.0, 1.0);
+  c.get("near_field", p.near_field);
   checkParams(p, c.path());
   return p;
 }
