@@ -79,6 +79,9 @@ int serve(ServiceConfig& config) {
       out.calib.baseline_m = cam.baseline_m;
       out.calib.rectified = true;
     }
+    // Something nearer than the main search reaches, filled by the near field: worth a
+    // count in NERV_HEALTH (near_field_frames), as it is rare and safety-relevant.
+    if (matcher->nearFieldPixels() > 0) node.count("near_field_frames");
     encodeDisparity(disparity, encoding, out);
     encodeConfidence(publish_confidence ? confidence : cv::Mat(), out);
     out.algorithm = matcher->name();

@@ -138,19 +138,22 @@ class NearFieldExtended : public StereoMatcher {
     const cv::Size small((left.cols + kScale - 1) / kScale, (left.rows + kScale - 1) / kScale);
     // Too small to search 64 levels at a quarter (OpenCV's matchers refuse it): below
     // 512 x 64 px the main search alone.
+    near_pixels_ = 0;
     if (small.width < 2 * kLevels || small.height < 16) return;
     cv::resize(left, small_left_, small, 0, 0, cv::INTER_AREA);
     cv::resize(right, small_right_, small, 0, 0, cv::INTER_AREA);
     near_->compute(small_left_, small_right_, near_disparity_, near_confidence_);
-    fuseNearField(disparity, confidence, near_disparity_, near_confidence_, fuse_);
+    near_pixels_ = fuseNearField(disparity, confidence, near_disparity_, near_confidence_, fuse_);
   }
   std::string name() const override { return inner_->name(); }
+  int nearFieldPixels() const override { return near_pixels_; }
 
   static constexpr int kScale = 4, kLevels = 64;
 
  private:
   std::unique_ptr<StereoMatcher> inner_, near_;
   NearFieldParams fuse_;
+  int near_pixels_ = 0;
   cv::Mat small_left_, small_right_, near_disparity_, near_confidence_;
 };
 

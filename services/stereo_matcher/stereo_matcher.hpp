@@ -84,6 +84,8 @@ class StereoMatcher {
     compute(left, right, disparity, scratch_confidence_);
   }
   virtual std::string name() const = 0;
+  // Pixels of the last compute() that the near-field match filled (near_field.hpp; 0 when off).
+  virtual int nearFieldPixels() const { return 0; }
 
   // Throws ConfigError for an unknown algorithm or unusable parameters.
   static std::unique_ptr<StereoMatcher> create(const Params& params);

@@ -101,8 +101,11 @@ TEST(stereoNearField, ABoxNearerThanTheSearchRangeIsMeasured) {
     Params on, off;
     off.near_field = false;
     cv::Mat d_on, d_off;
-    StereoMatcher::create(on)->compute(s.left, s.right, d_on);
+    const auto m_on = StereoMatcher::create(on);
+    m_on->compute(s.left, s.right, d_on);
     StereoMatcher::create(off)->compute(s.left, s.right, d_off);
+    EXPECT_EQ(m_on->nearFieldPixels(), cv::countNonZero(d_on != d_off)) << near_px;  // what the service counts
+    EXPECT_GT(m_on->nearFieldPixels(), s.box.area() / 2) << near_px;
     const auto [within_on, valid_on] = boxShares(d_on, s.box, static_cast<float>(near_px), 4.0f);
     const auto [within_off, valid_off] = boxShares(d_off, s.box, static_cast<float>(near_px), 4.0f);
     // 128 disparities end at 3.0 m on KITTI: without the near field no box pixel is right
@@ -121,8 +124,10 @@ TEST(stereoNearField, InRangeScenesAreUnchanged) {
   Params on, off;
   off.near_field = false;
   cv::Mat d_on, c_on, d_off, c_off;
-  StereoMatcher::create(on)->compute(s.left, s.right, d_on, c_on);
+  const auto m_on = StereoMatcher::create(on);
+  m_on->compute(s.left, s.right, d_on, c_on);
   StereoMatcher::create(off)->compute(s.left, s.right, d_off, c_off);
+  EXPECT_EQ(m_on->nearFieldPixels(), 0);
   EXPECT_EQ(cv::countNonZero(d_on != d_off), 0);
   EXPECT_EQ(cv::countNonZero(c_on != c_off), 0);
   EXPECT_GT(boxShares(d_on, s.box, 90.0f, 1.0f).first, 0.9);
