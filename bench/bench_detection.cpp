@@ -361,7 +361,7 @@ int main(int argc, char** argv) {
     MissTally misses;  // why objects were missed (miss_causes.hpp)
     std::map<std::string, int> verdicts;
     int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
-    std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val;
+    std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val, observed_share, unobserved_strips;
     Stat ground_h, ground_p, snv_h, snv_p, snv_ih, snv_ip;
     std::vector<Track> tracks;
     int num_hyps = 0;
@@ -383,6 +383,8 @@ int main(int argc, char** argv) {
       const std::vector<Verdict> vs = validator::validate(st.hypotheses, sn.rois, P.validator);
       auto t3 = std::chrono::steady_clock::now();
       ms_stixel.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      observed_share.push_back(st.observed.observed_share);
+      unobserved_strips.push_back(st.observed.num_unobserved);
       ms_snv.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
       ms_val.push_back(std::chrono::duration<double, std::milli>(t3 - t2).count());
       // The stixel service takes the latest EXTRINSICS as its prior.
@@ -685,6 +687,14 @@ int main(int argc, char** argv) {
       for (const Track* t : bad)
         std::printf("  %-10s %2d/%2d frames covered (kept TP %2d), z %.1f..%.1f m, x %.1f  %s\n", t->type.c_str(),
                     t->covered, t->frames, t->kept_covered, t->min_z, t->max_z, t->x, t->pattern.c_str());
+    }
+    if (!observed_share.empty()) {
+      // Free or unseen (observed_free_space.hpp): what the STIXELS / DETECTIONS fields say.
+      const auto [lo, hi] = std::minmax_element(unobserved_strips.begin(), unobserved_strips.end());
+      std::printf("observed free space: share median %.3f (min %.3f), unobserved strips median %.0f (%.0f..%.0f) of %d\n",
+                  median(observed_share), *std::min_element(observed_share.begin(), observed_share.end()),
+                  median(unobserved_strips), *lo, *hi, (ds.frames.front().camera.width + P.stixel.column_width_px - 1) /
+                                                          P.stixel.column_width_px);
     }
     if (ground_h.n || snv_h.n)
       std::printf("pose vs extrinsics (mean / max |error|): ground model height %+.3f / %.3f m, pitch %+.3f / %.3f deg "

@@ -116,9 +116,20 @@ Problem checkStixels(const stixels_t& msg, const Limits& limits) {
   if (msg.num_stixels < 0 || static_cast<size_t>(msg.num_stixels) != msg.stixels.size() ||
       msg.num_rois < 0 || static_cast<size_t>(msg.num_rois) != msg.rois.size())
     return problem("bad_size", "stixels: counts do not match arrays");
+  if (msg.num_columns < 0 || static_cast<size_t>(msg.num_columns) != msg.observed.size())
+    return problem("bad_size", "stixels: num_columns does not match the observed array");
   const auto& g = msg.ground;
   if (!finite({g.vd_slope, g.vd_intercept, g.horizon_row, g.pitch_deg, g.roll_deg, g.height_m}))
     return problem("bad_value", "stixels: ground model has non-finite numbers");
+  // The free space's coverage tells a planner what is unknown: a share outside
+  // 0..1 or a count beyond the strips would turn unseen into free.
+  auto share = [](float v) { return v >= 0 && v <= 1; };  // false for NaN
+  bool shares_ok = share(msg.min_observed) && share(msg.observed_share);
+  for (const float v : msg.observed) shares_ok = shares_ok && share(v);
+  if (!shares_ok || msg.num_unobserved < 0 || msg.num_unobserved > msg.num_columns ||
+      msg.column_width_px < 0 || (msg.num_columns > 0 && msg.column_width_px == 0) ||
+      int64_t{msg.num_columns} * msg.column_width_px > int64_t{limits.max_width} + msg.column_width_px)
+    return problem("bad_value", "stixels: observed free space has shares outside 0..1 or strips that do not fit the image");
   for (const auto& r : msg.rois) {
     if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.nearest_z_m, r.disparity}))
       return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has non-finite numbers");

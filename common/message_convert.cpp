@@ -413,7 +413,8 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v) {
 }
 
 stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, const std::vector<Stixel>& stixels,
-                         const std::vector<Hypothesis>& hypotheses, float processing_ms) {
+                         const std::vector<Hypothesis>& hypotheses, float processing_ms,
+                         const ObservedFreeSpace& observed) {
   stixels_t out;
   out.header = header;
   out.ground = toMessage(ground);
@@ -421,6 +422,12 @@ stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, cons
   for (const auto& h : hypotheses) out.rois.push_back(toMessage(h));
   out.num_stixels = static_cast<int32_t>(out.stixels.size());
   out.num_rois = static_cast<int32_t>(out.rois.size());
+  out.column_width_px = observed.column_width_px;
+  out.observed = observed.observed;
+  out.num_columns = static_cast<int32_t>(out.observed.size());
+  out.min_observed = observed.min_observed;
+  out.observed_share = observed.observed_share;
+  out.num_unobserved = observed.num_unobserved;
   out.processing_ms = processing_ms;
   return out;
 }

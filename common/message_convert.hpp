@@ -51,7 +51,8 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v);
 // The whole STIXELS / SURFACE_NORMALS message of one frame's results (the
 // stixel and snv_extrinsic services publish these; the fuzz paths check them).
 stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, const std::vector<Stixel>& stixels,
-                         const std::vector<Hypothesis>& hypotheses, float processing_ms);
+                         const std::vector<Hypothesis>& hypotheses, float processing_ms,
+                         const ObservedFreeSpace& observed = {});
 surface_normals_t surfaceNormalsMessage(const header_t& header, int interval_px, int ground_samples,
                                         const float ground_normal[3], const std::vector<NormalStats>& rois,
                                         float processing_ms);

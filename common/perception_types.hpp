@@ -37,6 +37,16 @@ struct Box {
   int x = 0, y = 0, w = 0, h = 0;  // [px]
 };
 
+// How much of each free-space strip was measured (stixel::observeFreeSpace):
+// a strip below min_observed is unknown, not free. num columns 0 = not computed.
+struct ObservedFreeSpace {
+  int column_width_px = 0;
+  std::vector<float> observed;   // per strip, 0..1: share of its free-space pixels with a disparity
+  float min_observed = 0.0f;     // the threshold num_unobserved counts against
+  float observed_share = 0.0f;   // the same share over every strip's free-space pixels
+  int num_unobserved = 0;        // strips below min_observed
+};
+
 // An obstacle hypothesis (ROI).
 struct Hypothesis {
   int id = 0;

@@ -118,7 +118,14 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
 #endif
   result.ground = estimateGround(disparity, cam, params, prior);
   STIXEL_MARK("ground");
-  if (!result.ground.valid) return result;
+  ObservedParams observed_params;
+  observed_params.column_width_px = params.column_width_px;
+  observed_params.max_distance_m = params.max_distance_m;
+  observed_params.min_observed = params.min_observed_share;
+  if (!result.ground.valid) {
+    result.observed = observeFreeSpace(disparity, cam, result.ground, {}, observed_params);  // nothing is free
+    return result;
+  }
 
   StixelExtractionParams ep;
   FreeSpaceParams& fs = ep.free_space;
@@ -141,6 +148,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   const OccupancyGrid grid = buildOccupancy(disparity, cam, result.ground, fs);
   STIXEL_MARK("occupancy");
   const std::vector<int> boundary = solveFreeSpace(grid, fs);
+  result.observed = observeFreeSpace(disparity, cam, result.ground, boundary, observed_params);
   STIXEL_MARK("free_space");
   const cv::Mat obstacle_map = obstacleDisparityMap(disparity, result.ground, fs);
   result.stixels = extractStixels(disparity, obstacle_map, cam, result.ground, boundary, ep);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "blended_tops.hpp"
+#include "observed_free_space.hpp"
 #include "box_refinement.hpp"
 #include "roof_pieces.hpp"
 #include "config.hpp"
@@ -22,6 +23,7 @@ struct Params {
   float ground_tolerance_m = 0.2f;       // pixels closer than this to the road plane are road
   float min_obstacle_height_m = 0.25f;   // shorter stixels are dropped
   float max_distance_m = 60.0f;          // hypotheses farther away are dropped
+  float min_observed_share = 0.3f;       // a strip whose free space has a smaller share of measured pixels is unobserved: unknown, not free (observed_free_space.hpp)
   float min_camera_height_m = 0.5f;      // ground lines implying another height are rejected
   float max_camera_height_m = 4.0f;
   float max_pitch_deg = 10.0f;           // ground lines implying a steeper pitch are rejected
@@ -178,6 +180,7 @@ struct StixelResult {
   GroundModel ground;
   std::vector<Stixel> stixels;
   std::vector<Hypothesis> hypotheses;
+  ObservedFreeSpace observed;  // per strip: is its free space measured (observed_free_space.hpp)
 };
 
 // disparity: CV_32F, left view, <= 0 or non-finite = invalid; cam must match its size.

@@ -120,6 +120,7 @@ Params readParams(ConfigSection& c) {
   c.get("blended_top_min_top_m", p.blended_top_min_top_m, 0.0, 5.0);
   c.get("blended_top_max_top_m", p.blended_top_max_top_m, 0.0, 5.0);
   c.get("blended_top_min_distance_m", p.blended_top_min_distance_m, 0.0, 500.0);
+  c.get("min_observed_share", p.min_observed_share, 0.0, 1.0);
   c.get("blended_top_min_share", p.blended_top_min_share, 0.01, 1.0);
   c.get("refine_boxes", p.refine_boxes);
   c.get("refine_depth_tolerance_m", p.refine_depth_tolerance_m, 0.01, 100.0);

@@ -37,6 +37,10 @@ int serve(ServiceConfig& config) {
       if (verdicts[i].label == "unvalidated") node.count("unvalidated_hypotheses");
     }
     out.num_detections = static_cast<int32_t>(out.detections.size());
+    // What was not seen travels with what was found (detections_t).
+    out.num_columns = smsg.num_columns;
+    out.num_unobserved = smsg.num_unobserved;
+    out.observed_share = smsg.observed_share;
     out.processing_ms = std::chrono::duration<float, std::milli>(
                             std::chrono::steady_clock::now() - start).count();
     node.publish("DETECTIONS", out);

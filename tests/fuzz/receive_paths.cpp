@@ -379,7 +379,7 @@ static Outcome receiveDisparityUnguarded(const uint8_t* data, size_t size) {
 }
 
 static Outcome receiveStixelsUnguarded(const uint8_t* data, size_t size) {
-  stixels_t msg;
+  stixels_t msg{};
   if (!decodeLikeNode(msg, data, size)) return reject("decode_failed", "does not decode");
   // snv_extrinsic/main.cpp and validator/main.cpp run the same check.
   if (Problem p = checkStixels(msg, fuzzLimits())) return reject(p);

@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "inject_bus.hpp"
 #include "message_convert.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/health_t.hpp"
@@ -57,29 +58,21 @@ stereo_frame_t frame(int64_t seq) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string url = argc > 1 ? argv[1] : "";
-  lcm::LCM lcm(url);
-  if (!lcm.good()) {
-    std::fprintf(stderr, "inject: LCM cannot start\n");
-    return 2;
-  }
+  const auto bus = test::openBus(argc, argv);
+  if (!bus) return 2;
+  lcm::LCM& lcm = *bus;
   Listener l;
   lcm.subscribe("NERV_HEALTH", &Listener::health, &l);
   lcm.subscribe("DISPARITY", &Listener::disparity, &l);
   lcm.subscribe("STIXELS", &Listener::stixels, &l);
 
   // The services must be listening before anything is sent.
-  const auto ready_by = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while ((!l.counters.count("stereo_matcher") || !l.counters.count("stixel")) &&
-         std::chrono::steady_clock::now() < ready_by)
-    lcm.handleTimeout(50);
+  test::handleUntil(lcm, std::chrono::seconds(10),
+                    [&] { return l.counters.count("stereo_matcher") && l.counters.count("stixel"); });
 
   // The services keep short queues (older frames are dropped under load), so
   // each message gets time to be handled before the next one.
-  auto settle = [&] {
-    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(150);
-    while (std::chrono::steady_clock::now() < until) lcm.handleTimeout(20);
-  };
+  auto settle = [&] { test::handleFor(lcm, std::chrono::milliseconds(150)); };
 
   // 1. bytes that are no message at all
   const std::string garbage = "this is not an LCM message";
@@ -141,8 +134,7 @@ int main(int argc, char** argv) {
            c("stixel", "decode_failed") >= 1 && c("stixel", "size_mismatch") >= 1 &&
            l.outputs["DISPARITY"] >= 1 && l.outputs["STIXELS"] >= 1;
   };
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!expectations() && std::chrono::steady_clock::now() < deadline) lcm.handleTimeout(100);
+  test::handleUntil(lcm, std::chrono::seconds(10), expectations, 100);
 
   for (const auto& [svc, counters] : l.counters)
     for (const auto& [name, value] : counters) std::printf("%s.%s = %lld\n", svc.c_str(), name.c_str(), (long long)value);

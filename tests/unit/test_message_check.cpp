@@ -102,7 +102,7 @@ TEST(commonMessageCheck, UnknownEncodingsAreRejected) {
 }
 
 TEST(commonMessageCheck, StixelsCountsAndNumbers) {
-  stixels_t s;
+  stixels_t s{};
   s.ground = toMessage(GroundModel{});
   s.num_stixels = 1;  // but no stixels
   s.num_rois = 0;
@@ -130,6 +130,43 @@ TEST(commonMessageCheck, StixelsCountsAndNumbers) {
   n.rois.push_back(toMessage(NormalStats{}));
   n.rois[0].ground_fraction = INFINITY;
   EXPECT_EQ(checkSurfaceNormals(n).counter, "bad_value");
+}
+
+TEST(commonMessageCheck, StixelsObservedFreeSpace) {
+  ObservedFreeSpace o;
+  o.column_width_px = 5;
+  o.observed = {1.0f, 0.0f, 0.25f};
+  o.min_observed = 0.3f;
+  o.observed_share = 0.5f;
+  o.num_unobserved = 2;
+  stixels_t s = stixelsMessage(header_t{}, GroundModel{}, {}, {}, 1.0f, o);
+  EXPECT_EQ(s.num_columns, 3);
+  EXPECT_EQ(s.column_width_px, 5);
+  EXPECT_FLOAT_EQ(s.observed[2], 0.25f);
+  EXPECT_EQ(s.num_unobserved, 2);
+  EXPECT_FALSE(checkStixels(s, Limits{}));
+  s.num_columns = 4;  // but three shares
+  EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_size");
+  s.num_columns = 3;
+  for (const float bad : {NAN, -0.1f, 1.5f}) {
+    stixels_t t = s;
+    t.observed[1] = bad;
+    EXPECT_EQ(checkStixels(t, Limits{}).counter, "bad_value") << bad;
+    t = s;
+    t.observed_share = bad;
+    EXPECT_EQ(checkStixels(t, Limits{}).counter, "bad_value") << bad;
+  }
+  stixels_t t = s;
+  t.num_unobserved = 4;  // more than the strips
+  EXPECT_EQ(checkStixels(t, Limits{}).counter, "bad_value");
+  t = s;
+  t.column_width_px = 0;  // strips of no width
+  EXPECT_EQ(checkStixels(t, Limits{}).counter, "bad_value");
+  t = s;
+  t.column_width_px = 4000;  // wider than any accepted image
+  EXPECT_EQ(checkStixels(t, Limits{}).counter, "bad_value");
+  // Messages without the strips (num_columns 0) stay valid.
+  EXPECT_FALSE(checkStixels(stixelsMessage(header_t{}, GroundModel{}, {}, {}, 1.0f), Limits{}));
 }
 
 TEST(commonMessageConvert, ImagesRoundTripInEveryLosslessEncoding) {

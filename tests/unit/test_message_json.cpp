@@ -89,6 +89,8 @@ TEST(toolsMessageJson, ExportsEveryFieldOfEveryMessage) {
   stixels.num_stixels = 1;
   stixels.rois.resize(1);
   stixels.num_rois = 1;
+  stixels.observed.resize(1);
+  stixels.num_columns = 1;
   expectEveryField(stixels, "stixels_t");
   surface_normals_t normals{};
   normals.rois.resize(1);

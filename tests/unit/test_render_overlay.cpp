@@ -189,6 +189,24 @@ TEST(renderOverlay, DrawsBoxesOfTheLogAtTheirPixels) {
   fs::remove_all(dir);
 }
 
+TEST(renderOverlay, UnobservedStripsAreMarkedAlongTheLowerEdge) {
+  cv::Mat panel(100, 200, CV_8UC3, cv::Scalar::all(0));
+  stixels_t st{};
+  st.column_width_px = 5;
+  st.num_columns = 40;
+  st.observed.assign(40, 1.0f);
+  for (int k = 0; k < 10; ++k) st.observed[k] = 0.1f;  // columns 0-49 unseen
+  st.observed[20] = 0.3f;                              // at the threshold: observed
+  st.min_observed = 0.3f;
+  viz::drawStixels(panel, st);
+  auto magenta = [&](int u, int v) { return panel.at<cv::Vec3b>(v, u) == cv::Vec3b(255, 0, 255); };
+  EXPECT_TRUE(magenta(0, 99));
+  EXPECT_TRUE(magenta(49, 100 - viz::kUnobservedBandPx));
+  EXPECT_FALSE(magenta(49, 100 - viz::kUnobservedBandPx - 1));  // a band, not the strip
+  EXPECT_FALSE(magenta(50, 99));
+  EXPECT_FALSE(magenta(102, 99));
+}
+
 TEST(renderOverlay, BrokenMessagesAreSkippedAndCounted) {
   const fs::path dir = tempDir("broken");
   const std::string log_path = (dir / "test.lcmlog").string();

@@ -71,6 +71,11 @@ void drawInfo(cv::Mat& panel, const LogFrame& f) {
   if (f.detections) {
     std::snprintf(buf, sizeof buf, "hypotheses %d, kept %d", f.detections->num_detections, f.detections->num_kept);
     lines.push_back({buf, white});
+    if (f.detections->num_columns > 0) {  // free or unseen (magenta band in panel 3)
+      std::snprintf(buf, sizeof buf, "free space measured %.0f %%, %d of %d strips unobserved",
+                    100.0 * f.detections->observed_share, f.detections->num_unobserved, f.detections->num_columns);
+      lines.push_back({buf, white});
+    }
   } else {
     lines.push_back({"no DETECTIONS for this frame", kRemovedColor});
   }
@@ -108,6 +113,7 @@ void drawInfo(cv::Mat& panel, const LogFrame& f) {
   lines.push_back({"       tall/low/wide: size limit, none/few/mix: normal evidence, NN%: share", kRemovedColor});
   lines.push_back({"       ground truth (DontCare grey)", kLabelColor});
   lines.push_back({"ground model / horizon row", kGroundColor});
+  lines.push_back({"band along the lower edge: free space not measured (unknown, not free)", kUnobservedColor});
   int y = 24;
   for (const auto& [text, color] : lines) {
     cv::putText(panel, text, {12, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, color, 1, cv::LINE_AA);

@@ -160,6 +160,12 @@ void write(JsonWriter& j, const stixels_t& m) {
   array(j, "stixels", m.stixels);
   j.field("num_rois", m.num_rois);
   array(j, "rois", m.rois);
+  j.field("column_width_px", m.column_width_px);
+  j.field("num_columns", m.num_columns);
+  array(j, "observed", m.observed);
+  j.field("min_observed", m.min_observed);
+  j.field("observed_share", m.observed_share);
+  j.field("num_unobserved", m.num_unobserved);
   j.field("processing_ms", m.processing_ms);
   j.endObject();
 }
@@ -246,6 +252,9 @@ void write(JsonWriter& j, const detections_t& m) {
   j.field("num_detections", m.num_detections);
   array(j, "detections", m.detections);
   j.field("num_kept", m.num_kept);
+  j.field("num_columns", m.num_columns);
+  j.field("num_unobserved", m.num_unobserved);
+  j.field("observed_share", m.observed_share);
   j.field("processing_ms", m.processing_ms);
   j.endObject();
 }

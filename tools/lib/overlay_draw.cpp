@@ -150,6 +150,14 @@ void drawStixels(cv::Mat& panel, const stixels_t& stixels) {
     const cv::Rect r = clipped(s.u, s.bottom_row - 1, s.width, 2, panel);
     if (r.area() > 0) panel(r).setTo(cv::Scalar::all(255));
   }
+  // Strips whose free space was not measured (unknown, not free): a magenta band
+  // along the lower edge (stixels_t.observed).
+  for (int k = 0; k < stixels.num_columns && k < static_cast<int>(stixels.observed.size()); ++k) {
+    if (stixels.observed[k] >= stixels.min_observed) continue;
+    const cv::Rect r = clipped(k * stixels.column_width_px, panel.rows - kUnobservedBandPx, stixels.column_width_px,
+                               kUnobservedBandPx, panel);
+    if (r.area() > 0) panel(r).setTo(kUnobservedColor);
+  }
   drawColorBar(panel, {panel.cols - 230, 18, 200, 10}, true, 3, 60, "m");
 }
 

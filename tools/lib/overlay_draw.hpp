@@ -38,7 +38,11 @@ void drawGroundTruth(cv::Mat& img, const std::vector<KittiLabel>& labels);
 // the horizon row is drawn.
 void drawGroundOnDisparity(cv::Mat& panel, const cv::Mat& disparity, const ground_model_t& ground);
 
-// Every stixel as a translucent column coloured by its depth (colour bar in the panel).
+// Every stixel as a translucent column coloured by its depth (colour bar in the panel),
+// and a magenta band of kUnobservedBandPx rows along the lower edge under every strip
+// whose free space was not measured (stixels_t.observed below min_observed).
+constexpr int kUnobservedBandPx = 6;
+const cv::Scalar kUnobservedColor(255, 0, 255);
 void drawStixels(cv::Mat& panel, const stixels_t& stixels);
 
 // Needles as short lines from each sample towards its projected normal,

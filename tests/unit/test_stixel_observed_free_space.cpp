@@ -1,0 +1,102 @@
+// Free or unseen (observed_free_space.hpp): each free-space strip's share of
+// measured pixels between the image's lower edge and its free-space boundary.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "observed_free_space.hpp"
+#include "stixel_estimator.hpp"
+#include "stixel_key_checks.hpp"
+#include "synthetic_road_scene.hpp"
+
+namespace nerv::stixel {
+namespace {
+
+int strips(const StereoCamera& cam) { return (cam.width + 4) / 5; }
+
+TEST(stixelObservedFreeSpace, AClearRoadIsObservedEverywhere) {
+  const StereoCamera cam = kittiLikeCamera();
+  const StixelResult r = estimateStixels(renderDisparity(RoadScene{}, cam), cam, Params{});
+  ASSERT_TRUE(r.ground.valid);
+  ASSERT_EQ(static_cast<int>(r.observed.observed.size()), strips(cam));
+  EXPECT_EQ(r.observed.column_width_px, 5);
+  EXPECT_FLOAT_EQ(r.observed.min_observed, 0.3f);
+  for (size_t k = 0; k < r.observed.observed.size(); ++k) EXPECT_FLOAT_EQ(r.observed.observed[k], 1.0f) << k;
+  EXPECT_EQ(r.observed.num_unobserved, 0);
+  EXPECT_FLOAT_EQ(r.observed.observed_share, 1.0f);
+}
+
+TEST(stixelObservedFreeSpace, ABlindedRegionIsUnknownNotFree) {
+  // A smudge over columns [100, 400): no disparity, so no obstacle evidence and
+  // no boundary there - free by the boundary search, unobserved here.
+  const StereoCamera cam = kittiLikeCamera();
+  RoadScene scene;
+  scene.boxes.push_back({15.0f, 2.0f, 4.0f, 1.5f});  // a car on the right, seen
+  cv::Mat disp = renderDisparity(scene, cam);
+  disp.colRange(100, 400).setTo(0.0f);
+  const StixelResult r = estimateStixels(disp, cam, Params{});
+  ASSERT_TRUE(r.ground.valid);
+  ASSERT_EQ(static_cast<int>(r.observed.observed.size()), strips(cam));
+  for (int k = 0; k < strips(cam); ++k) {
+    const bool blind = k * 5 >= 100 && k * 5 < 400;
+    if (blind) EXPECT_FLOAT_EQ(r.observed.observed[k], 0.0f) << k;
+    else EXPECT_FLOAT_EQ(r.observed.observed[k], 1.0f) << k;
+  }
+  EXPECT_EQ(r.observed.num_unobserved, 60);
+  EXPECT_TRUE(r.observed.observed_share > 0.5f && r.observed.observed_share < 0.9f) << r.observed.observed_share;
+  // The car is found; nothing is proposed in the smudge.
+  ASSERT_EQ(r.hypotheses.size(), 1u);
+  EXPECT_GT(r.hypotheses[0].box.x, 400);
+}
+
+TEST(stixelObservedFreeSpace, OnlyTheRowsBelowTheBoundaryCount) {
+  // By hand: a ground line, a strip whose nearest obstacle is at 20 px of
+  // disparity, and holes placed above and below the row where the road reaches it.
+  const StereoCamera cam = kittiLikeCamera();
+  const StixelResult r = estimateStixels(renderDisparity(RoadScene{}, cam), cam, Params{});
+  ASSERT_TRUE(r.ground.valid);
+  const GroundModel& g = r.ground;
+  cv::Mat disp(cam.height, cam.width, CV_32F, cv::Scalar(10.0f));
+  std::vector<int> boundary(strips(cam), -1);
+  boundary[50] = 20;
+  const int v0 = static_cast<int>(std::ceil((20.0 - g.vd_intercept) / g.vd_slope));
+  ASSERT_GT(v0, 0);
+  ASSERT_LT(v0 + 10, cam.height);
+  disp(cv::Rect(250, 0, 5, v0)).setTo(0.0f);                     // above its free space: not counted
+  disp(cv::Rect(250, cam.height - 10, 5, 10)).setTo(0.0f);       // its lowest 10 rows
+  disp.at<float>(cam.height - 1, 255) = std::nanf("");            // strip 51: one NaN pixel
+  ObservedParams p;
+  const ObservedFreeSpace o = observeFreeSpace(disp, cam, g, boundary, p);
+  EXPECT_FLOAT_EQ(o.observed[50], static_cast<float>(cam.height - v0 - 10) / (cam.height - v0));
+  // Strip 51 is free up to 60 m: its rows from where the road is 60 m away.
+  const int v60 = static_cast<int>(std::ceil((cam.disparityFromDepth(60.0) - g.vd_intercept) / g.vd_slope));
+  EXPECT_FLOAT_EQ(o.observed[51], 1.0f - 1.0f / (5.0f * (cam.height - v60)));
+  EXPECT_FLOAT_EQ(o.observed[49], 1.0f);
+  // An obstacle whose foot lies below the image leaves no free space: observed.
+  boundary[10] = 1000;
+  disp.colRange(50, 55).setTo(0.0f);
+  EXPECT_FLOAT_EQ(observeFreeSpace(disp, cam, g, boundary, p).observed[10], 1.0f);
+  // The threshold.
+  p.min_observed = 0.99f;
+  EXPECT_EQ(observeFreeSpace(disp, cam, g, boundary, p).num_unobserved, 1);  // strip 50 alone
+}
+
+TEST(stixelObservedFreeSpace, WithoutGroundNothingIsFree) {
+  const StereoCamera cam = kittiLikeCamera();
+  const cv::Mat invalid(cam.height, cam.width, CV_32F, cv::Scalar(0.0f));
+  const StixelResult r = estimateStixels(invalid, cam, Params{});
+  EXPECT_FALSE(r.ground.valid);
+  ASSERT_EQ(static_cast<int>(r.observed.observed.size()), strips(cam));
+  EXPECT_EQ(r.observed.num_unobserved, strips(cam));
+  EXPECT_FLOAT_EQ(r.observed.observed_share, 0.0f);
+  // No disparity at all: no strips.
+  EXPECT_TRUE(estimateStixels(cv::Mat(), cam, Params{}).observed.observed.empty());
+}
+
+TEST(stixelObservedFreeSpace, ItsKeyIsRead) {
+  expectFloatKeysRead({{"min_observed_share", &Params::min_observed_share}}, {0.5});
+  expectRejected("min_observed_share", 1.5);
+}
+
+}  // namespace
+}  // namespace nerv::stixel
