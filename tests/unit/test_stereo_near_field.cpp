@@ -187,6 +187,17 @@ TEST(stereoNearField, TheCarAheadInStopAndGoIsDetectedAtItsDepth) {
       } else {
         EXPECT_EQ(hit, nullptr) << f.name << ": without the near field the car should be lost (the reason it exists)";
       }
+      // Free or unseen (observed_free_space.hpp): lost, the car leaves its strips without
+      // disparity, and they must read as unknown rather than free; found, it bounds them.
+      const int w = st.observed.column_width_px;
+      int strips = 0, unobserved = 0;
+      for (int k = (static_cast<int>(car.x1) + w - 1) / w; (k + 1) * w <= static_cast<int>(car.x2); ++k, ++strips)
+        unobserved += st.observed.observed[k] < st.observed.min_observed ? 1 : 0;
+      ASSERT_GT(strips, 20) << f.name;
+      if (near_field) EXPECT_LT(unobserved, strips / 5) << f.name << ": the found car's strips read as unseen";
+      else EXPECT_GT(unobserved, strips * 4 / 5) << f.name << ": the lost car's strips read as free";
+      std::printf("near_car %s, near field %s: %d of the car's %d strips unobserved\n", f.name.c_str(),
+                  near_field ? "on" : "off", unobserved, strips);
     }
   }
   fs::remove_all(dir);
