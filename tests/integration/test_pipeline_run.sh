@@ -42,6 +42,9 @@ for st in stereo_matcher stixel snv_extrinsic validator; do
   grep -Eq "\"$st\":\{\"frames\":6," "$out/summary.json" \
     || fail "latency breakdown lacks 6 frames of $st: $(grep -o '"latency_breakdown_ms".\{0,400\}' "$out/summary.json")"
 done
+# every frame says how much of its free space was measured (STIXELS.observed via DETECTIONS)
+[[ $(grep -o '"strips":249' "$out/summary.json" | wc -l) -eq 6 ]] \
+  || fail "summary lacks the free-space coverage of 6 frames: $(grep -o '"observed_share.\{0,60\}' "$out/summary.json" | head -3)"
 "$BIN/nerv_export" "$out/nerv.lcmlog" --disparity-png "$out/disp" >/dev/null
 [[ $(ls "$out/disp" | wc -l) -eq 6 ]] || fail "expected 6 disparity PNGs"
 pass "summary and disparity export"

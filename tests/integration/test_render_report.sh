@@ -70,6 +70,9 @@ grep -q 'Distance of the kept detections' "$html" && grep -q '<td>nearest_z_m</t
 grep -q 'Why objects were missed' "$html" \
   && { grep -q 'No labelled object was missed' "$html" || grep -q '<th>by class (stixel + SNV)</th>' "$html"; } \
   || fail "no misses-by-cause section in the report"
+grep -q 'Free or unseen (STIXELS.observed)' "$html" \
+  && grep -Eq 'free space measured, median / lowest frame \[%\]</td><td>[0-9]+ / [0-9]+<' "$html" \
+  || fail "no free-space coverage in the report"
 if grep -Eq '<(script|link)[ >]|src="http|url\(http' "$html"; then fail "the report refers to something outside itself"; fi
 pass "report written: $(cat "$out/report.txt")"
 

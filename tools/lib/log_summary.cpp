@@ -38,6 +38,8 @@ struct FrameRow {
   double pitch_deg = 0, roll_deg = 0, height_m = 0, confidence = 0;
   std::string ground_source;
   double ground_height_m = 0;
+  double observed_share = -1;  // free space measured (DETECTIONS, from STIXELS.observed); -1 = not reported
+  int unobserved = -1, columns = -1;
 };
 
 }  // namespace
@@ -94,6 +96,11 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       FrameRow& r = frames[det.header.seq];
       r.hypotheses = det.num_detections;
       r.kept = det.num_kept;
+      if (det.num_columns > 0) {
+        r.observed_share = det.observed_share;
+        r.unobserved = det.num_unobserved;
+        r.columns = det.num_columns;
+      }
       r.latency_ms = (e->timestamp - det.header.utime) / 1000.0;
       if (r.frame_id.empty()) r.frame_id = det.header.frame_id;
       latencies.push_back(r.latency_ms);
@@ -176,6 +183,9 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.field("confidence", r.confidence);
     j.field("ground_source", r.ground_source);
     j.field("ground_height_m", r.ground_height_m);
+    j.field("observed_share", r.observed_share);
+    j.field("unobserved_strips", r.unobserved);
+    j.field("strips", r.columns);
     j.endObject();
   }
   j.endArray();

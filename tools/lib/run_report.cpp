@@ -40,6 +40,7 @@ struct Row {
   double confidence = kNaN, entropy = kNaN;
   double ground_pitch = kNaN, ground_height = kNaN;
   int hypotheses = -1, kept = -1;
+  double observed = kNaN, unobserved = kNaN;  // free space measured, strips unobserved [%] (DETECTIONS)
   double latency_ms = kNaN;
   std::map<std::string, double> stage_ms;
   bool labelled = false;
@@ -172,6 +173,10 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
       if (f.detections) {
         r.hypotheses = f.detections->num_detections;
         r.kept = f.detections->num_kept;
+        if (f.detections->num_columns > 0) {
+          r.observed = 100.0 * f.detections->observed_share;
+          r.unobserved = 100.0 * f.detections->num_unobserved / f.detections->num_columns;
+        }
         r.stage_ms["validator"] = f.detections->processing_ms;
         if (f.detections_log_utime >= 0) r.latency_ms = (f.detections_log_utime - f.detections->header.utime) / 1000.0;
       }
@@ -280,13 +285,14 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
   page.heading("Run summary");
   {
     int with_stereo = 0, with_det = 0, valid_pose = 0;
-    std::vector<double> lat, hyp, kept;
+    std::vector<double> lat, hyp, kept, observed, unobserved;
     for (const auto& r : rows) {
       with_stereo += r.has_stereo;
       with_det += r.hypotheses >= 0;
       valid_pose += r.ext_valid;
       lat.push_back(r.latency_ms);
       if (r.hypotheses >= 0) hyp.push_back(r.hypotheses), kept.push_back(r.kept);
+      if (std::isfinite(r.observed)) observed.push_back(r.observed), unobserved.push_back(r.unobserved);
     }
     page.table({"figure", "value"},
                {{"frames in the log (STEREO_FRAME)", std::to_string(with_stereo)},
@@ -296,6 +302,14 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
                 {"latency capture to DETECTIONS p95 [ms]", fmt("%.1f", percentile(lat, 0.95))},
                 {"hypotheses per frame (mean)", fmt("%.1f", mean(hyp))},
                 {"kept detections per frame (mean)", fmt("%.1f", mean(kept))},
+                {"free space measured, median / lowest frame [%]",
+                 observed.empty() ? std::string("not reported")
+                                  : fmt("%.0f", percentile(observed, 0.5)) + " / " +
+                                        fmt("%.0f", *std::min_element(observed.begin(), observed.end()))},
+                {"strips unobserved (unknown, not free), median / highest frame [%]",
+                 unobserved.empty() ? std::string("not reported")
+                                    : fmt("%.0f", percentile(unobserved, 0.5)) + " / " +
+                                          fmt("%.0f", *std::max_element(unobserved.begin(), unobserved.end()))},
                 {"broken messages skipped", std::to_string(result.log.broken)},
                 {"duplicate messages skipped", std::to_string(result.log.duplicates)}});
     std::string text;
@@ -373,6 +387,19 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
     o.dashed = true;
     if (anyFinite(o)) p.add(o);
     plot(p);
+  }
+
+  page.heading("Free or unseen (STIXELS.observed)");
+  {
+    SvgPlot p("Free space measured per frame", "frame seq", "%");
+    auto o = series(rows, "free-space pixels with a disparity", "#1f77b4", [](const Row& r) { return r.observed; });
+    o.points = true;
+    p.add(o);
+    auto u = series(rows, "strips unobserved (unknown, not free)", "#e377c2", [](const Row& r) { return r.unobserved; });
+    u.points = true;
+    p.add(u);
+    if (anyFinite(o)) plot(p);
+    else page.paragraph("No frame reported its free space (DETECTIONS.num_columns 0).");
   }
 
   page.heading("Pitch histogram of one frame");
