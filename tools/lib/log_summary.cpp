@@ -209,10 +209,16 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     t += breakdown.text();
     for (const auto& [seq, r] : frames) {
       std::snprintf(buf, sizeof buf,
-                    "  %-28s hyp %3d kept %3d  pitch %6.2f deg  height %5.2f m  conf %.2f  ground %s %.2f m\n",
+                    "  %-28s hyp %3d kept %3d  pitch %6.2f deg  height %5.2f m  conf %.2f  ground %s %.2f m",
                     r.frame_id.c_str(), r.hypotheses, r.kept, r.pitch_deg, r.height_m, r.confidence,
                     r.ground_source.c_str(), r.ground_height_m);
       t += buf;
+      if (r.columns > 0) {  // free or unseen
+        std::snprintf(buf, sizeof buf, "  seen %3.0f %%, %d/%d strips unobserved", 100.0 * r.observed_share,
+                      r.unobserved, r.columns);
+        t += buf;
+      }
+      t += "\n";
     }
     for (const auto& [name, h] : last_health) {
       std::snprintf(buf, sizeof buf, "health %-22s in %lld out %lld dropped %lld errors %lld%s%s\n",
