@@ -2,9 +2,15 @@
 // measured pixels between the image's lower edge and its free-space boundary.
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include <cmath>
+#include <filesystem>
+
+#include "dataset.hpp"
 #include "observed_free_space.hpp"
+#include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
 #include "stixel_key_checks.hpp"
 #include "synthetic_road_scene.hpp"
@@ -91,6 +97,41 @@ TEST(stixelObservedFreeSpace, WithoutGroundNothingIsFree) {
   EXPECT_FLOAT_EQ(r.observed.observed_share, 0.0f);
   // No disparity at all: no strips.
   EXPECT_TRUE(estimateStixels(cv::Mat(), cam, Params{}).observed.observed.empty());
+}
+
+TEST(stixelObservedFreeSpace, ARealFrameBlindedOnOneLensIsUnknownNotFree) {
+  // KITTI 0926 frame 5 through the real matcher: as recorded, then with glare (the
+  // lower left quarter saturated) or a water drop (a strong blur) on the left lens.
+  const std::string dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no " << dir;
+  const Dataset ds = openDataset(dir);
+  ASSERT_GT(ds.frames.size(), 5u);
+  const DatasetFrame& f = ds.frames[5];
+  const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_GRAYSCALE), right = cv::imread(f.right_path, cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(left.empty());
+  const auto matcher = stereo::StereoMatcher::create(stereo::Params{});
+  const Params p;
+  auto run = [&](const cv::Mat& l) {
+    cv::Mat d;
+    matcher->compute(l, right, d);
+    const StixelResult r = estimateStixels(d, f.camera, p);
+    EXPECT_TRUE(r.ground.valid);
+    int left_half = 0;  // strips over columns 0-599
+    for (int k = 0; k < 120; ++k) left_half += r.observed.observed[k] < r.observed.min_observed ? 1 : 0;
+    return std::make_pair(r.observed.num_unobserved, left_half);
+  };
+  const auto clear = run(left);
+  EXPECT_LE(clear.first, 12);  // the image borders (docs/stixel.md "Free or unseen")
+  cv::Mat glare = left.clone();
+  glare(cv::Rect(0, 150, 600, 225)).setTo(255);
+  cv::Mat drop = left.clone();
+  cv::GaussianBlur(drop(cv::Rect(0, 100, 600, 275)), drop(cv::Rect(0, 100, 600, 275)), cv::Size(0, 0), 12);
+  for (const cv::Mat& blinded : {glare, drop}) {
+    const auto [all, left_half] = run(blinded);
+    EXPECT_GE(left_half, 110);  // of 120
+    // more than the stixel service's max_unobserved_fraction (0.4): an "unobserved" error
+    EXPECT_GT(all, 0.4 * 249);
+  }
 }
 
 TEST(stixelObservedFreeSpace, ItsKeyIsRead) {
