@@ -64,6 +64,23 @@ void invalidateBorder(cv::Mat& disparity, cv::Mat& confidence, int border_x, int
   }
 }
 
+// A left pixel whose census code is 0 sees no texture at all: every pair in its
+// window compares equal (a saturated patch of glare or sky, a clipped shadow). Its
+// cost at disparity d is then the popcount of the right code alone, so the winner
+// is wherever the right view is flattest - for the same glare in both lenses, the
+// glare's own edges at disparity ~0 (docs/stixel.md "Free or unseen"). No
+// measurement there, so no disparity.
+void invalidateFlatCensus(const cv::Mat& left, const cv::Mat& census_left, cv::Mat& disparity, cv::Mat& confidence) {
+  for (int y = 0; y < disparity.rows; ++y) {
+    const uint32_t* c = census_left.ptr<uint32_t>(y);
+    const uint8_t* g = left.ptr<uint8_t>(y);
+    float* d = disparity.ptr<float>(y);
+    float* q = confidence.ptr<float>(y);
+    for (int x = 0; x < disparity.cols; ++x)
+      if (c[x] == 0 && g[x] >= 250) d[x] = 0.0f, q[x] = 0.0f;
+  }
+}
+
 struct StripeWorkspace {
   std::vector<uint8_t> forward, backward, vertical[2], vertical_min[2];
   // one segment of pass 3: its rows' costs and the first vertical path's rows
@@ -278,6 +295,7 @@ class OwnSgm : public StereoMatcher {
     invalidateBorder(disparity, confidence,
                      (road_row < rows ? std::max(p_.census_width, p_.road_census_width) : p_.census_width) / 2,
                      p_.census_height / 2, p_.census_height / 2);
+    if (p_.flat_census_invalid) invalidateFlatCensus(left, census_left_, disparity, confidence);
     // 3x3 median of the disparity (as in Hirschmueller 2008 and libSGM): the
     // census winners on low-texture road scatter per pixel (+-0.4 px) and
     // neighbours differing by > 1 px split the road into tiny normal windows

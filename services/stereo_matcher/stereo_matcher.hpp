@@ -42,6 +42,7 @@ struct Params {
   int road_census_width = 13;      // census window of the road band (odd, <= 32 pairs)
   int road_census_height = 3;
   double road_census_from = 0.72;  // first row of the road band / image height; 1 = no band
+  bool flat_census_invalid = true;  // no disparity where the left census code is 0 and the pixel saturated (glare, clipped sky: no texture to match; own_sgm.cpp)
   int sgm_p1 = 7;                  // penalty for a disparity change of 1 [census bits]
   int sgm_p2 = 90;                 // penalty for larger changes [census bits]; bits + p2 <= 255
   bool subpixel = true;            // equiangular fit on the aggregated cost; false: integer disparities

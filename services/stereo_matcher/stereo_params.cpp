@@ -70,7 +70,7 @@ std::string describeParams(const Params& p) {
     << ";road_census=" << p.road_census_width << 'x' << p.road_census_height << '@' << p.road_census_from
     << ";sgm=" << p.sgm_p1 << '/' << p.sgm_p2 << ";subpixel=" << p.subpixel << ";boundary_snap_px=" << p.boundary_snap_px
     << ";gated_mean=" << p.gated_mean_radius << '/' << p.gated_mean_range_px << '/' << p.gated_mean_range_rel
-    << ";near_field=" << p.near_field;
+    << ";near_field=" << p.near_field << ";flat_census_invalid=" << p.flat_census_invalid << "s";
   return s.str();
 }
 
@@ -104,6 +104,7 @@ Params readParams(ConfigSection& c) {
   c.get("gated_mean_range_px", p.gated_mean_range_px, 0.0, 16.0);
   c.get("gated_mean_range_rel", p.gated_mean_range_rel, 0.0, 1.0);
   c.get("near_field", p.near_field);
+  c.get("flat_census_invalid", p.flat_census_invalid);
   checkParams(p, c.path());
   return p;
 }

@@ -339,6 +339,37 @@ TEST(stereoSgm, ShiftedTextureRecoversConstantDisparity) {
   }
 }
 
+TEST(stereoSgm, SaturatedPatchesGiveNoDisparity) {
+  // Glare over the same pixels of both views: a flat white block matches itself at
+  // its edges (disparity ~0, "far away") and the paths carry values into it. With
+  // flat_census_invalid (default) nothing inside it is measured; a flat dark block is
+  // left to the matcher, and the textured rest is as without the rule.
+  const cv::Mat base = texture(120, 320, 5, 1.2);
+  cv::Mat left = shifted(base, 6.0), right = shifted(base, -6.0);  // 12 px everywhere
+  const cv::Rect glare(100, 30, 120, 60), dark(20, 30, 50, 60);
+  left(glare).setTo(255);
+  right(glare).setTo(255);
+  left(dark).setTo(3);
+  right(dark).setTo(3);
+  Params on, off;
+  on.num_disparities = off.num_disparities = 32;
+  off.flat_census_invalid = false;
+  ASSERT_TRUE(on.flat_census_invalid);
+  cv::Mat d_on, d_off;
+  StereoMatcher::create(on)->compute(left, right, d_on);
+  StereoMatcher::create(off)->compute(left, right, d_off);
+  const cv::Rect inside(glare.x + 5, glare.y + 4, glare.width - 10, glare.height - 8);
+  EXPECT_EQ(cv::countNonZero(d_on(inside)), 0);
+  EXPECT_GT(cv::countNonZero(d_off(inside)), inside.area() / 20) << "the case the rule is for";
+  EXPECT_EQ(cv::countNonZero(d_on(dark) != d_off(dark)), 0);
+  cv::Mat outside = cv::Mat::ones(left.size(), CV_8U);
+  outside(cv::Rect(glare.x - 8, glare.y - 8, glare.width + 16, glare.height + 16)).setTo(0);
+  const int differ = cv::countNonZero((d_on != d_off) & outside);
+  EXPECT_LT(differ, cv::countNonZero(outside) / 100);
+  // The cache key tells the two apart.
+  EXPECT_NE(describeParams(on), describeParams(off));
+}
+
 TEST(stereoSgm, LeftRightCheckInvalidatesOccludedStrip) {
   const OcclusionScene s = occlusionScene();
   Params p;
