@@ -101,8 +101,8 @@ TEST(stixelObservedFreeSpace, WithoutGroundNothingIsFree) {
 
 TEST(stixelObservedFreeSpace, ARealFrameBlindedByGlareOrADropIsUnknownNotFree) {
   // KITTI 0926 frame 5 through the real matcher: as recorded, then with glare (the
-  // lower left quarter saturated) on the left lens or on both, or a water drop (a
-  // strong blur) on the left lens.
+  // lower left quarter saturated) on the left lens or on both, a water drop (a
+  // strong blur) or a black cover on the left lens.
   const std::string dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no " << dir;
   const Dataset ds = openDataset(dir);
@@ -129,9 +129,12 @@ TEST(stixelObservedFreeSpace, ARealFrameBlindedByGlareOrADropIsUnknownNotFree) {
   right_glare(cv::Rect(0, 150, 600, 225)).setTo(255);
   cv::Mat drop = left.clone();
   cv::GaussianBlur(drop(cv::Rect(0, 100, 600, 275)), drop(cv::Rect(0, 100, 600, 275)), cv::Size(0, 0), 12);
+  cv::Mat covered = left.clone();  // dirt or a wiper: black
+  covered(cv::Rect(0, 150, 600, 225)).setTo(0);
   // The same glare in both lenses matches itself as far away unless saturated
   // patches are left unmeasured (stereo_matcher.flat_census_invalid, the default).
-  for (const auto& [l, r] : {std::make_pair(glare, right), std::make_pair(glare, right_glare), std::make_pair(drop, right)}) {
+  for (const auto& [l, r] : {std::make_pair(glare, right), std::make_pair(glare, right_glare), std::make_pair(drop, right),
+                             std::make_pair(covered, right)}) {
     const auto [all, left_half] = run(l, r);
     EXPECT_GE(left_half, 110);  // of 120
     // more than the stixel service's max_unobserved_fraction (0.4): an "unobserved" error
