@@ -42,6 +42,17 @@ TEST(validatorPoleParts, TheShorterBoxesOfOnePoleGo) {
   EXPECT_EQ(v[0].label, "object");  // the class stays; only the box goes
 }
 
+TEST(validatorPoleParts, ABoxOfTheSecondPostHeightIsAPartToo) {
+  // KITTI 0926 frame 5 (since saturated sky is left unmeasured): the post at 12 m as a
+  // 4.59 m box and a 2.46 m one over the same columns.
+  const std::vector<Hypothesis> h = {box(25, 1065, 132, 39, 143, 12.4f, 2.46f, 0.67f),
+                                     box(28, 1076, 3, 37, 275, 12.0f, 4.59f, 0.62f)};
+  std::vector<Verdict> v = keptObjects(2);
+  EXPECT_EQ(removePoleParts(h, {70, 207}, v, PolePartParams{}, 1.2f), 1);
+  EXPECT_FALSE(v[0].kept);
+  EXPECT_TRUE(v[1].kept);
+}
+
 // Both boxes stay kept.
 void expectNoPart(const Hypothesis& a, const Hypothesis& b, const char* what) {
   std::vector<Verdict> v = keptObjects(2);
