@@ -54,9 +54,19 @@ class Node {
   void subscribe(const std::string& base_channel, std::function<void(const T&)> handler,
                  int queue_capacity = 2);
 
+  // Encodes into a buffer kept across calls: LCM's own publish(&msg) allocates a
+  // fresh one per message, and for a 1.4 MB DISPARITY that allocation (mmap, page
+  // faults, munmap with a TLB shootdown on a VM) cost more than sending it
+  // (docs/stereo.md "Publishing a frame").
   template <class T>
   void publish(const std::string& base_channel, const T& msg) {
-    lcm_.publish(channel(base_channel), &msg);
+    const int size = msg.getEncodedSize();
+    if (static_cast<size_t>(size) > publish_buffer_.size()) publish_buffer_.resize(size);
+    if (msg.encode(publish_buffer_.data(), 0, size) < 0) {
+      error("encode_failed", "a " + std::string(T::getTypeName()) + " for " + channel(base_channel) + " does not encode");
+      return;
+    }
+    lcm_.publish(channel(base_channel), publish_buffer_.data(), static_cast<unsigned>(size));
   }
 
   // Counters reported in health.
@@ -102,6 +112,7 @@ class Node {
   NodeOptions options_;
   lcm::LCM lcm_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  std::vector<uint8_t> publish_buffer_;  // publish()'s encoding, reused
   std::vector<std::function<void()>> ticks_;
   int64_t frames_in_ = 0, frames_out_ = 0, frames_dropped_ = 0, errors_ = 0;
   std::map<std::string, int64_t> counters_;
@@ -122,8 +133,12 @@ void Node::subscribe(const std::string& base_channel, std::function<void(const T
                      int queue_capacity) {
   auto sub = std::make_unique<Subscription>();
   sub->node = this;
-  sub->on_message = [this, handler](const lcm::ReceiveBuffer* rbuf, const std::string& ch) {
-    T msg;
+  // One message object per subscription, decoded into again and again: its arrays
+  // keep their capacity, so a 1.4 MB DISPARITY is not allocated anew per frame
+  // (handlers get a const reference and copy what they keep).
+  auto kept = std::make_shared<T>();
+  sub->on_message = [this, handler, kept](const lcm::ReceiveBuffer* rbuf, const std::string& ch) {
+    T& msg = *kept;
     // Generated decoders return < 0 on a wrong fingerprint, a short buffer or an
     // array count longer than the buffer (cmake/LcmDecoderBounds.cmake: before
     // that, a corrupt count allocated gigabytes or threw from std::vector). A
