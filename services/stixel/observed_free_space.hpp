@@ -27,10 +27,10 @@ struct ObservedParams {
   float min_observed = 0.3f;     // a strip with a smaller share of measured pixels is unobserved
 };
 
-
 // disparity: CV_32F (<= 0 or non-finite = invalid). boundary: solveFreeSpace's
 // bin (= disparity, 1 px bins) per strip, -1 = free up to max_distance_m; empty
-// or ground invalid: no free space, every strip unobserved.
+// or ground invalid: no free space, every strip unobserved. The result's
+// ObservedFreeSpace is plain data (perception_types.hpp) for the message.
 ObservedFreeSpace observeFreeSpace(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& ground,
                                    const std::vector<int>& boundary, const ObservedParams& p);
 
