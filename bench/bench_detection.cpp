@@ -362,6 +362,7 @@ int main(int argc, char** argv) {
     std::map<std::string, int> verdicts;
     int trap_hyps = 0, trap_removed = 0, frames_done = 0, frames_no_ground = 0;
     std::vector<double> ms_matcher, ms_stixel, ms_snv, ms_val, observed_share, unobserved_strips;
+    size_t strips = 0;  // free-space strips across the image (observed_free_space.hpp)
     Stat ground_h, ground_p, snv_h, snv_p, snv_ih, snv_ip;
     std::vector<Track> tracks;
     int num_hyps = 0;
@@ -385,6 +386,7 @@ int main(int argc, char** argv) {
       ms_stixel.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
       observed_share.push_back(st.observed.observed_share);
       unobserved_strips.push_back(st.observed.num_unobserved);
+      strips = st.observed.observed.size();
       ms_snv.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
       ms_val.push_back(std::chrono::duration<double, std::milli>(t3 - t2).count());
       // The stixel service takes the latest EXTRINSICS as its prior.
@@ -691,10 +693,9 @@ int main(int argc, char** argv) {
     if (!observed_share.empty()) {
       // Free or unseen (observed_free_space.hpp): what the STIXELS / DETECTIONS fields say.
       const auto [lo, hi] = std::minmax_element(unobserved_strips.begin(), unobserved_strips.end());
-      std::printf("observed free space: share median %.3f (min %.3f), unobserved strips median %.0f (%.0f..%.0f) of %d\n",
+      std::printf("observed free space: share median %.3f (min %.3f), unobserved strips median %.0f (%.0f..%.0f) of %zu\n",
                   median(observed_share), *std::min_element(observed_share.begin(), observed_share.end()),
-                  median(unobserved_strips), *lo, *hi, (ds.frames.front().camera.width + P.stixel.column_width_px - 1) /
-                                                          P.stixel.column_width_px);
+                  median(unobserved_strips), *lo, *hi, strips);
     }
     if (ground_h.n || snv_h.n)
       std::printf("pose vs extrinsics (mean / max |error|): ground model height %+.3f / %.3f m, pitch %+.3f / %.3f deg "

@@ -17,6 +17,9 @@ bool finite(std::initializer_list<double> values) {
   return true;
 }
 
+// A share in 0..1 (false for NaN).
+bool isShare(float v) { return v >= 0 && v <= 1; }
+
 Problem checkSize(int width, int height, const Limits& limits, const std::string& what) {
   if (width <= 0 || height <= 0 || width > limits.max_width || height > limits.max_height) {
     std::ostringstream m;
@@ -123,9 +126,8 @@ Problem checkStixels(const stixels_t& msg, const Limits& limits) {
     return problem("bad_value", "stixels: ground model has non-finite numbers");
   // The free space's coverage tells a planner what is unknown: a share outside
   // 0..1 or a count beyond the strips would turn unseen into free.
-  auto share = [](float v) { return v >= 0 && v <= 1; };  // false for NaN
-  bool shares_ok = share(msg.min_observed) && share(msg.observed_share);
-  for (const float v : msg.observed) shares_ok = shares_ok && share(v);
+  bool shares_ok = isShare(msg.min_observed) && isShare(msg.observed_share);
+  for (const float v : msg.observed) shares_ok = shares_ok && isShare(v);
   if (!shares_ok || msg.num_unobserved < 0 || msg.num_unobserved > msg.num_columns ||
       msg.column_width_px < 0 || (msg.num_columns > 0 && msg.column_width_px == 0) ||
       int64_t{msg.num_columns} * msg.column_width_px > int64_t{limits.max_width} + msg.column_width_px)
@@ -156,10 +158,9 @@ Problem checkSurfaceNormals(const surface_normals_t& msg) {
                      "surface normals: roi " + std::to_string(s.roi_id) + " has non-finite numbers");
   // Shares outside 0..1 and counts that do not add up fed the verdicts (a
   // ground share of 1e30 reads as all ground).
-  auto share = [](float v) { return v >= 0 && v <= 1; };
   for (const auto& s : msg.rois)
-    if (!share(s.density) || !share(s.ground_fraction) || !share(s.object_fraction) ||
-        !share(s.error_fraction) || s.num_samples < 0 || s.num_normals < 0 ||
+    if (!isShare(s.density) || !isShare(s.ground_fraction) || !isShare(s.object_fraction) ||
+        !isShare(s.error_fraction) || s.num_samples < 0 || s.num_normals < 0 ||
         s.num_normals > s.num_samples)
       return problem("bad_value", "surface normals: roi " + std::to_string(s.roi_id) +
                                       " has shares outside 0..1 or counts that do not add up");

@@ -70,7 +70,7 @@ std::string describeParams(const Params& p) {
     << ";road_census=" << p.road_census_width << 'x' << p.road_census_height << '@' << p.road_census_from
     << ";sgm=" << p.sgm_p1 << '/' << p.sgm_p2 << ";subpixel=" << p.subpixel << ";boundary_snap_px=" << p.boundary_snap_px
     << ";gated_mean=" << p.gated_mean_radius << '/' << p.gated_mean_range_px << '/' << p.gated_mean_range_rel
-    << ";near_field=" << p.near_field << ";flat_census_invalid=" << p.flat_census_invalid << "s";
+    << ";near_field=" << p.near_field << ";flat_census_invalid=" << p.flat_census_invalid;
   return s.str();
 }
 
