@@ -50,6 +50,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -78,6 +79,7 @@ struct Options {
   bool count_far_detections = false;  // unmatched detections beyond max_distance_m are false positives
   int frames = 0;
   bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
+  std::set<std::string> classes;  // --classes: count only these label types (others are ignored both ways)
   std::string oracle;  // "", truth, truth-at-valid, no-near-outliers, no-far-outliers, no-outliers
 };
 
@@ -87,7 +89,7 @@ struct Options {
                "usage: bench_detection --data DIR [--labels DIR] [--max-distance M] [--frames N]\n"
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible] [--count-far-detections]\n"
                "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
-               "       [--difficulty easy|moderate|hard]\n"
+               "       [--difficulty easy|moderate|hard] [--classes Car,Pedestrian,...]\n"
                "       [--true-disparity | --oracle MODE]\n");
   std::exit(2);
 }
@@ -111,6 +113,12 @@ Options parse(int argc, char** argv) {
     else if (a == "--overlay") o.overlay = value();
     else if (a == "--visible") o.visible = true;
     else if (a == "--difficulty") o.difficulty = value();
+    else if (a == "--classes") {
+      std::stringstream list(value());
+      for (std::string c; std::getline(list, c, ',');)
+        if (!c.empty()) o.classes.insert(c);
+      if (o.classes.empty()) usage("--classes wants a comma-separated list of label types");
+    }
     else if (a == "--per-frame") o.per_frame = true;
     else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
@@ -190,18 +198,37 @@ cv::Mat wireFixed(const cv::Mat& d) {
 }
 
 // Disparity of one frame as the pipeline's later stages see it (wireFixed), from
-// the cache when the same pair and matcher settings were computed before (every
+// the cache when the same pair and matcher settings were computed by this same
+// build before (every
 // stereo::Params field but `threads` is in the key, stereo::describeParams: until
 // 2026-12-02 the road band, BM and WLS fields were not, so a --set of them read
 // stale entries). The
 // cache holds the wire's uint16 as PNG, so cached and fresh runs are identical
 // (an earlier cache of 1/16 px steps rounded nerv_sgm's finer subpixel values:
 // up to 0.01 F1 apart from a fresh run; its files have other names).
+// This program's own file (size and time) is in the key too: the matcher's code
+// is linked into it, so a change to the code that leaves Params alone (a new
+// filter, a fix) gets fresh entries instead of reading the old code's maps
+// (2026-12-05: the default cache held maps of an earlier build, and urban 12
+// scored 217 true positives against 221 from a fresh cache). Runs of one build
+// with --set of the later stages still share it.
+std::string programStamp() {
+  static const std::string stamp = [] {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) return std::string("unknown");
+    const auto size = fs::file_size(self, ec);
+    const auto time = fs::last_write_time(self, ec).time_since_epoch().count();
+    return ec ? std::string("unknown") : std::to_string(size) + "@" + std::to_string(time);
+  }();
+  return stamp;
+}
+
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
                     const std::string& cache_dir, double& ms) {
   std::ostringstream key;
   key << fs::absolute(f.left_path).string() << '|' << fs::last_write_time(f.left_path).time_since_epoch().count()
-      << '|' << stereo::describeParams(sp) << "|wire" << kDisparityScale;
+      << '|' << stereo::describeParams(sp) << "|wire" << kDisparityScale << "|build " << programStamp();
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
   cv::Mat fixed;
@@ -354,6 +381,7 @@ int main(int argc, char** argv) {
     if (!o.difficulty.empty())
       if (const std::string why = setKittiDifficulty(o.difficulty, ep); !why.empty()) throw std::runtime_error(why);
     ep.limit_detections = !o.count_far_detections;
+    ep.classes = o.classes;
     EvalCounts all, kept;
     DepthErrors depth_kept;  // kept true positives: the label's nearest depth vs the hypothesis' depths
     std::map<std::string, int> cls_objects, cls_tp_all, cls_tp_kept;
@@ -520,6 +548,7 @@ int main(int argc, char** argv) {
       for (size_t i = 0; i < labels.size(); ++i) {
         const auto& l = labels[i];
         if (l.type == "DontCare" || l.x < -999 || l.z <= 0 || l.z > ep.max_distance_m || hidden(l)) continue;
+        if (!ep.classes.empty() && !ep.classes.count(l.type)) continue;
         int ti = -1;
         float bestd = 1e9f;
         for (size_t t = 0; t < tracks.size(); ++t) {
@@ -644,6 +673,11 @@ int main(int argc, char** argv) {
                                                                      : " (unmatched hypotheses beyond it ignored)")).c_str()
                                         : "",
                   o.visible ? ", occlusion < 2 and truncation < 0.5 only" : "", difficultyText(ep).c_str());
+      if (!ep.classes.empty()) {
+        std::printf("classes counted:");
+        for (const std::string& c : ep.classes) std::printf(" %s", c.c_str());
+        std::printf(" (boxes on other labelled objects count neither way)\n");
+      }
       std::printf("%-14s %8s %6s %6s %6s %10s %8s %6s\n", "", "objects", "TP", "FP", "FN", "precision", "recall", "F1");
       for (const auto& [name, c] : {std::pair<const char*, EvalCounts>{"stixel only", all}, {"stixel + SNV", kept}})
         std::printf("%-14s %8d %6d %6d %6d %10.3f %8.3f %6.3f\n", name, c.objects, c.tp, c.fp, c.fn, c.precision(),

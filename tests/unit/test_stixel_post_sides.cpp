@@ -1,5 +1,6 @@
 // Box sides of posts: a sign post narrower than its strip whose plate has
-// holes beside the post and in its rows gets the plate's width (post_sides.hpp);
+// holes beside the post and in its rows gets the plate's width (post_sides.hpp),
+// also a near one whose plate rows the matcher broke with wrong depths;
 // a post without a plate keeps its own; the matcher's fattening beside a post
 // stays outside its box (box_refinement.hpp, narrow groups); a sign whose post
 // the matcher lost is found from its foot and plate (sign_plates.hpp), a wide
@@ -32,6 +33,25 @@ class stixelPostSides : public ::testing::Test {
   const StereoCamera cam = kittiLikeCamera();
   const RoadScene scene;
   cv::Mat disp = renderDisparity(scene, cam);
+
+  // With `without` the post at z keeps its own width (its box starts more than
+  // 8 px right of the plate's left edge); with the defaults it gets the plate's.
+  // Returns the default box's hypothesis for further checks.
+  std::optional<Hypothesis> expectPlateWidthOnlyWithDefaults(float z, const Params& without, const FaceColumns& plate,
+                                                             const char* why) {
+    const std::optional<Hypothesis> narrow = postAt(estimateStixels(disp, cam, without).hypotheses, z);
+    EXPECT_TRUE(narrow.has_value());
+    if (narrow) {
+      EXPECT_GT(narrow->box.x, plate.u0 + 8) << why;
+    }
+    const std::optional<Hypothesis> wide = postAt(estimateStixels(disp, cam, Params{}).hypotheses, z);
+    EXPECT_TRUE(wide.has_value());
+    if (wide) {
+      EXPECT_NEAR(wide->box.x, plate.u0, 2);
+      EXPECT_NEAR(wide->box.x + wide->box.w, plate.u1, 2);
+    }
+    return wide;
+  }
 };
 
 TEST_F(stixelPostSides, ASignPlateWithHolesWidensItsPostsBox) {
@@ -52,14 +72,34 @@ TEST_F(stixelPostSides, ASignPlateWithHolesWidensItsPostsBox) {
 
   Params off;
   off.post_sides_max_width_m = 0.0f;
-  const std::optional<Hypothesis> narrow = postAt(estimateStixels(disp, cam, off).hypotheses, z);
-  ASSERT_TRUE(narrow.has_value());
-  EXPECT_GT(narrow->box.x, plate.u0 + 8) << "without the rule the box keeps the post's width";
+  expectPlateWidthOnlyWithDefaults(z, off, plate, "without the rule the box keeps the post's width");
+}
 
-  const std::optional<Hypothesis> wide = postAt(estimateStixels(disp, cam, Params{}).hypotheses, z);
+TEST_F(stixelPostSides, ANearSignWhosePlateRowsAreBrokenGetsThePlatesWidth) {
+  // A sign at 9 m in front of a wall at 14 m: a 0.12 m post 3.7 m tall with a
+  // 0.6 x 0.6 m plate at 3.1-3.7 m. The matcher's noise in the untextured plate
+  // reads two of its middle rows as the wall behind, so no plate column holds
+  // more than 0.3 m of rows at the post's depth in one run (urban seed 14 frame
+  // 0: the runs beside a near post were 0.18-0.34 m). 0.4 m of run kept the
+  // post's width; 0.25 m takes the plate's.
+  const float z = 9.0f;
+  paintFace(disp, scene, cam, 14.0f, -3.0, 3.0, 0.0, 4.5);
+  const FaceColumns post = paintFace(disp, scene, cam, z, -0.06, 0.06, 0.0, 3.7);
+  const FaceColumns plate = paintFace(disp, scene, cam, z, -0.3, 0.3, 3.1, 3.7);
+  const double foot = footRow(scene, cam, z), px_per_m = cam.fy / z;
+  const float wall = static_cast<float>(cam.fx * cam.baseline_m / 14.0);
+  const int middle = static_cast<int>(std::lround(foot - 3.4 * px_per_m));
+  for (const int v : {middle, middle + 1}) {
+    disp.row(v).colRange(plate.u0, post.u0).setTo(wall);
+    disp.row(v).colRange(post.u1, plate.u1).setTo(wall);
+  }
+
+  Params before;
+  before.post_sides_min_run_m = 0.4f;
+  const std::optional<Hypothesis> wide =
+      expectPlateWidthOnlyWithDefaults(z, before, plate, "with 0.4 m of run the box keeps the post's width");
   ASSERT_TRUE(wide.has_value());
-  EXPECT_NEAR(wide->box.x, plate.u0, 2);
-  EXPECT_NEAR(wide->box.x + wide->box.w, plate.u1, 2);
+  EXPECT_NEAR(wide->box.y, foot - 3.7 * px_per_m, 3);
 }
 
 TEST_F(stixelPostSides, APostWithoutAPlateKeepsItsWidthBesideABackgroundWall) {
