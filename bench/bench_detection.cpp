@@ -56,6 +56,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "pipeline_keys.hpp"
 #include "dataset.hpp"
 #include "detection_eval.hpp"
 #include "distance_accuracy.hpp"
@@ -163,26 +164,26 @@ AllParams loadParams(const Options& o) {
   {
     ConfigSection s = top.section("stereo_matcher");
     p.stereo = stereo::readParams(s);
-    for (const char* k : {"output_encoding", "queue"}) s.allow(k);
+    allowServiceOnlyKeys(s, "stereo_matcher");
     s.finish();
   }
   {
     ConfigSection s = top.section("stixel");
     p.stixel = stixel::readParams(s);
     s.get("min_prior_confidence", p.min_prior_confidence, 0.0, 1.0);
-    s.allow("queue");
+    allowServiceOnlyKeys(s, "stixel");
     s.finish();
   }
   {
     ConfigSection s = top.section("snv_extrinsic");
     p.snv = snv::readParams(s);
-    for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) s.allow(k);
+    allowServiceOnlyKeys(s, "snv_extrinsic");
     s.finish();
   }
   {
     ConfigSection s = top.section("validator");
     p.validator = validator::readParams(s);
-    for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) s.allow(k);
+    allowServiceOnlyKeys(s, "validator");
     s.finish();
   }
   top.finish();

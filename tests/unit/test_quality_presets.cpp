@@ -1,7 +1,10 @@
 // Camera presets config/cameras/*.yaml: every service accepts them
 // (--check-config on the real binaries, and readParams in-process), and the
 // stixel stage with the preset's parameters finds the road and a box in an
-// exact disparity rendered for that camera.
+// exact disparity rendered for that camera. serviceKeys.*: the keys a service's
+// main reads besides its algorithm's parameters (pipeline_keys.hpp) are accepted
+// by its --check-config, and the in-process tools accept the pipeline config and
+// the presets the services run with.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -9,9 +12,12 @@
 #include <climits>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <fstream>
 #include <string>
 
 #include "config.hpp"
+#include "pipeline_keys.hpp"
 #include "snv_extrinsic.hpp"
 #include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
@@ -57,6 +63,25 @@ fs::path binDir() {
   return fs::path(buf).parent_path().parent_path() / "bin";
 }
 
+// A valid value for each service-only key, as YAML.
+const std::map<std::string, std::string> kValues = {
+    {"shard", "{count: 1, index: 0}"},   {"queue", "3"},
+    {"output_encoding", "png16"},       {"publish_confidence", "false"},
+    {"min_prior_confidence", "0.4"},    {"max_prior_age_frames", "20"},
+    {"max_unobserved_fraction", "0.5"}, {"join_capacity", "6"},
+    {"join_timeout_ms", "1500"}};
+
+const char* const kServices[] = {"stereo_matcher", "stixel", "snv_extrinsic", "validator"};
+
+int checkConfig(const fs::path& binary, const std::string& yaml) {
+  const fs::path file = fs::temp_directory_path() / ("nerv_keys_" + std::to_string(getpid()) + ".yaml");
+  std::ofstream(file) << yaml;
+  const std::string cmd = binary.string() + " --config " + file.string() + " --check-config > /dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  fs::remove(file);
+  return rc;
+}
+
 }  // namespace
 
 class qualityPresets : public ::testing::TestWithParam<Preset> {};
@@ -67,19 +92,19 @@ TEST_P(qualityPresets, EveryServiceReadsThePreset) {
   for (const char* k : {"lcm_url", "channel_prefix", "limits", "source", "run"}) top.allow(k);
   ConfigSection st = top.section("stereo_matcher");
   EXPECT_NO_THROW(stereo::readParams(st));
-  for (const char* k : {"output_encoding", "queue"}) st.allow(k);
+  allowServiceOnlyKeys(st, "stereo_matcher");
   EXPECT_NO_THROW(st.finish());
   ConfigSection sx = top.section("stixel");
   EXPECT_NO_THROW(stixel::readParams(sx));
-  for (const char* k : {"queue", "min_prior_confidence"}) sx.allow(k);
+  allowServiceOnlyKeys(sx, "stixel");
   EXPECT_NO_THROW(sx.finish());
   ConfigSection sn = top.section("snv_extrinsic");
   EXPECT_NO_THROW(snv::readParams(sn));
-  for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) sn.allow(k);
+  allowServiceOnlyKeys(sn, "snv_extrinsic");
   EXPECT_NO_THROW(sn.finish());
   ConfigSection va = top.section("validator");
   EXPECT_NO_THROW(validator::readParams(va));
-  for (const char* k : {"queue", "join_capacity", "join_timeout_ms"}) va.allow(k);
+  allowServiceOnlyKeys(va, "validator");
   EXPECT_NO_THROW(va.finish());
   EXPECT_NO_THROW(top.finish());
 }
@@ -87,7 +112,7 @@ TEST_P(qualityPresets, EveryServiceReadsThePreset) {
 TEST_P(qualityPresets, ServicesAcceptItWithCheckConfig) {
   const fs::path bin = binDir();
   int checked = 0;
-  for (const char* s : {"stereo_matcher", "stixel", "snv_extrinsic", "validator"}) {
+  for (const char* s : kServices) {
     if (!fs::exists(bin / s)) continue;
     const std::string cmd = (bin / s).string() + " --config " + presetPath(GetParam().file) +
                             " --check-config > /dev/null 2>&1";
@@ -122,3 +147,46 @@ INSTANTIATE_TEST_SUITE_P(qualityCameras, qualityPresets, ::testing::ValuesIn(kPr
                            std::string n = i.param.file;
                            return n.substr(0, n.find('.'));
                          });
+
+TEST(serviceKeys, EveryServiceAcceptsEveryKeyListedForIt) {
+  const fs::path bin = binDir();
+  int checked = 0;
+  for (const char* service : kServices) {
+    if (!fs::exists(bin / service)) continue;
+    std::string yaml = std::string(service) + ":\n";
+    for (const std::string& key : nerv::serviceOnlyKeys(service)) {
+      ASSERT_TRUE(kValues.count(key)) << "no test value for " << service << "." << key;
+      yaml += "  " + key + ": " + kValues.at(key) + "\n";
+    }
+    EXPECT_EQ(checkConfig(bin / service, yaml), 0) << yaml;
+    // The check is live: a key nobody reads is refused.
+    EXPECT_NE(checkConfig(bin / service, yaml + "  not_a_key: 1\n"), 0) << service;
+    ++checked;
+  }
+  if (checked == 0) GTEST_SKIP() << "services not built in " << bin;
+}
+
+TEST(serviceKeys, InProcessToolsAcceptThePipelineConfigAndTheCameraPresets) {
+  const fs::path bin = binDir();
+  const std::string data = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
+  const std::string disparity = std::string(NERV_SHARED_DATA) + "/kitti2015_000005";
+  if (!fs::exists(bin / "bench_detection") || !fs::exists(bin / "nerv_eval_disparity"))
+    GTEST_SKIP() << "tools not built in " << bin;
+  if (!fs::is_directory(data) || !fs::is_directory(disparity)) GTEST_SKIP() << "no KITTI data in " << NERV_SHARED_DATA;
+  const std::string root = NERV_SOURCE_DIR;
+  const fs::path cache = fs::temp_directory_path() / ("nerv_keys_cache_" + std::to_string(getpid()));
+  for (const std::string& config : {root + "/config/pipeline.yaml", root + "/config/cameras/kitti.yaml",
+                                   root + "/config/cameras/cityscapes.yaml", root + "/config/cameras/zed.yaml"}) {
+    const std::string detect = (bin / "bench_detection").string() + " --data " + data + " --frames 1 --quiet --cache " +
+                               cache.string() + " --config " + config + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(detect.c_str()), 0) << detect;
+    const std::string eval = (bin / "nerv_eval_disparity").string() + " --data " + disparity + " --config " + config +
+                             " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(eval.c_str()), 0) << eval;
+  }
+  fs::remove_all(cache);
+}
+
+TEST(serviceKeys, AnUnknownServiceHasOnlyItsShard) {
+  EXPECT_EQ(nerv::serviceOnlyKeys("source"), std::vector<std::string>{"shard"});
+}

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "pipeline_keys.hpp"
 #include "disparity_metrics.hpp"
 #include "message_convert.hpp"
 #include "stereo_matcher.hpp"
@@ -138,7 +139,7 @@ int main(int argc, char** argv) {
     if (!config_path.empty()) {
       YAML::Node root = loadConfigFile(config_path);
       ConfigSection section(root["stereo_matcher"], "stereo_matcher");
-      for (const char* k : {"output_encoding", "queue", "publish_confidence", "shard"}) section.allow(k);
+      allowServiceOnlyKeys(section, "stereo_matcher");
       base = readParams(section);
       section.finish();
     }
