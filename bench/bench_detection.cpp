@@ -160,7 +160,7 @@ AllParams loadParams(const Options& o) {
   }
   AllParams p;
   ConfigSection top(root, "");
-  for (const char* k : {"lcm_url", "channel_prefix", "limits", "source", "run"}) top.allow(k);
+  allowPipelineTopLevelKeys(top);
   {
     ConfigSection s = top.section("stereo_matcher");
     p.stereo = stereo::readParams(s);

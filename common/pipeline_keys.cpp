@@ -18,4 +18,14 @@ void allowServiceOnlyKeys(ConfigSection& section, const std::string& service) {
   for (const std::string& k : serviceOnlyKeys(service)) section.allow(k);
 }
 
+const std::vector<std::string>& pipelineTopLevelKeys() {
+  static const std::vector<std::string> keys = {"lcm_url",  "channel_prefix", "limits",    "warmup", "stereo_matcher",
+                                                "stixel",   "snv_extrinsic",  "validator", "source", "run"};
+  return keys;
+}
+
+void allowPipelineTopLevelKeys(ConfigSection& root) {
+  for (const std::string& k : pipelineTopLevelKeys()) root.allow(k);
+}
+
 }  // namespace nerv

@@ -19,4 +19,10 @@ namespace nerv {
 const std::vector<std::string>& serviceOnlyKeys(const std::string& service);
 void allowServiceOnlyKeys(ConfigSection& section, const std::string& service);
 
+// The top-level keys of a pipeline config: lcm_url, channel_prefix, limits,
+// warmup, the four service sections, source and run. A tool allows them all and
+// reads the ones it uses.
+const std::vector<std::string>& pipelineTopLevelKeys();
+void allowPipelineTopLevelKeys(ConfigSection& root);
+
 }  // namespace nerv

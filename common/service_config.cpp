@@ -1,5 +1,6 @@
 #include "service_config.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -57,6 +58,13 @@ ServiceConfig::ServiceConfig(const std::string& service, int argc, char** argv)
   limits.get("max_width", options_.limits.max_width, 16, 16384);
   limits.get("max_height", options_.limits.max_height, 16, 16384);
   limits.finish();
+  ConfigSection warmup = root_.section("warmup");
+  warmup.get("width", warmup_.width, 0, 16384);
+  warmup.get("height", warmup_.height, 0, 16384);
+  warmup.finish();
+  if ((warmup_.width > 0) != (warmup_.height > 0))
+    throw ConfigError("warmup: width and height are both 0 (off) or both set, got " + std::to_string(warmup_.width) +
+                      " x " + std::to_string(warmup_.height));
   for (const char* name : kSections)
     if (service != name) root_.allow(name);
   section_ = root_.section(service);
@@ -87,6 +95,16 @@ void ServiceConfig::finish() {
   section_.finish();
   root_.finish();
   if (check_only_) std::exit(0);  // --check-config: the config is valid, nothing else to do
+}
+
+void warmUp(const ServiceConfig& config, const std::function<void(const WarmupSize&)>& body) {
+  const WarmupSize size = config.warmup();
+  if (!size.on()) return;
+  const auto start = std::chrono::steady_clock::now();
+  body(size);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "%s: warmed up on a %dx%d frame in %.1f ms\n", config.nodeOptions().service.c_str(), size.width,
+               size.height, ms);
 }
 
 JoinSettings readJoinSettings(ConfigSection& section, int default_queue) {

@@ -12,11 +12,12 @@
 
 #include "config.hpp"
 #include "lcm_node.hpp"
+#include "warmup_frame.hpp"
 
 namespace nerv {
 
 // Top-level keys of a pipeline config (besides the service sections).
-// lcm_url, channel_prefix, limits {max_width, max_height}, source, run.
+// lcm_url, channel_prefix, limits {max_width, max_height}, warmup {width, height}, source, run.
 class ServiceConfig {
  public:
   ServiceConfig(const std::string& service, int argc, char** argv);
@@ -27,13 +28,22 @@ class ServiceConfig {
   // With --check-config, exits 0 here.
   void finish();
   NodeOptions nodeOptions() const { return options_; }
+  // Top-level `warmup: {width, height}`: the frame size to warm up on at start
+  // (warmup_frame.hpp); off when absent.
+  WarmupSize warmup() const { return warmup_; }
 
  private:
   ConfigSection root_;
   ConfigSection section_;
   NodeOptions options_;
+  WarmupSize warmup_;
   bool check_only_ = false;
 };
+
+// Runs body (the service's algorithm on warmup_frame.hpp's frames) when the
+// config asks for a warm-up, and says on stderr how long it took:
+// "stixel: warmed up on a 1242x375 frame in 18.2 ms".
+void warmUp(const ServiceConfig& config, const std::function<void(const WarmupSize&)>& body);
 
 // Settings of a service that joins two inputs by seq (see seq_join.hpp):
 // queue (LCM queue per input), join_capacity, join_timeout_ms.

@@ -18,6 +18,13 @@ int serve(ServiceConfig& config) {
   Node node(config.nodeOptions());
   snv::SnvExtrinsicEstimator estimator(params);
   cv::Mat disparity;
+  warmUp(config, [&](const WarmupSize& size) {
+    // Its buffers are per instance, so the service's own estimator runs; the
+    // pose filter then starts over, as if nothing had been seen.
+    const StereoCamera cam = warmupCamera(size);
+    estimator.process(warmupDisparity(cam), cam, warmupHypotheses(cam), warmupGround(cam));
+    estimator.resetFilter();
+  });
 
   auto process = [&](const disparity_t& dmsg, const stixels_t& smsg) {
     if (std::string why = decodeDisparity(dmsg, disparity); !why.empty())

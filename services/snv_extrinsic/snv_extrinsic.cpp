@@ -144,6 +144,8 @@ SnvExtrinsicEstimator::SnvExtrinsicEstimator(const Params& params)
   if (params_.interval_px < 1) throw std::invalid_argument("snv: interval_px must be >= 1");
 }
 
+void SnvExtrinsicEstimator::resetFilter() { filter_ = PoseFilter(filterParams(params_)); }
+
 SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoCamera& cam,
                                          const std::vector<Hypothesis>& rois,
                                          const GroundModel& ground) {

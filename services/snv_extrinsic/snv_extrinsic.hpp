@@ -105,6 +105,9 @@ class SnvExtrinsicEstimator {
   // Keeps the temporal filter's state between calls.
   SnvResult process(const cv::Mat& disparity, const StereoCamera& cam,
                     const std::vector<Hypothesis>& rois, const GroundModel& ground);
+  // Forgets the temporal filter's state (the buffers stay): the next frame is
+  // estimated as the first one of a fresh estimator is.
+  void resetFilter();
 
  private:
   Params params_;

@@ -38,6 +38,12 @@ int serve(ServiceConfig& config) {
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
   disparity_t out;
+  warmUp(config, [&](const WarmupSize& size) {
+    warmupPair(size, left, right);
+    matcher->compute(left, right, disparity, confidence);
+    encodeDisparity(disparity, encoding, out);  // the message's arrays get their capacity
+    encodeConfidence(publish_confidence ? confidence : cv::Mat(), out);
+  });
 
   node.subscribe<stereo_frame_t>("STEREO_FRAME", [&](const stereo_frame_t& frame) {
     if (!node.ownsFrame(frame.header.seq)) return;  // another shard's frame

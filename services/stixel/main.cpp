@@ -29,6 +29,10 @@ int serve(ServiceConfig& config) {
   Node node(config.nodeOptions());
   stixel::PriorSelection priors(max_prior_age_frames);
   cv::Mat disparity;
+  warmUp(config, [&](const WarmupSize& size) {
+    const StereoCamera cam = warmupCamera(size);
+    stixel::estimateStixels(warmupDisparity(cam), cam, params);  // stateless: nothing carries over
+  });
 
   node.subscribe<extrinsics_t>("EXTRINSICS", [&](const extrinsics_t& e) {
     if (Problem p = checkExtrinsics(e)) return node.error(p.counter, p.message);

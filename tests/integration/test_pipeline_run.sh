@@ -16,6 +16,13 @@ NERV_BUILD="$NERV_BUILD" "$NERV_ROOT/tools/nerv" run --data "$data" --out "$out"
 no_survivors || fail "processes survived: $(pgrep -af "^$BIN/")"
 pass "run completed, nothing left running"
 
+# config/pipeline.yaml asks for a warm-up at the camera's size before the services subscribe
+for s in stereo_matcher stixel snv_extrinsic; do
+  grep -q "^$s: warmed up on a 1242x375 frame in" "$out/logs/services.log" \
+    || fail "$s did not warm up: $(cat "$out/logs/services.log")"
+done
+pass "the services warmed up before the first frame"
+
 "$BIN/nerv_export" "$out/nerv.lcmlog" --json --no-blobs >"$out/events.jsonl"
 for ch in STEREO_FRAME DISPARITY STIXELS SURFACE_NORMALS EXTRINSICS DETECTIONS NERV_HEALTH; do
   grep -q "\"channel\":\"$ch\"" "$out/events.jsonl" || fail "channel $ch is not in the log"

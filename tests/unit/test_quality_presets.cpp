@@ -89,7 +89,7 @@ class qualityPresets : public ::testing::TestWithParam<Preset> {};
 TEST_P(qualityPresets, EveryServiceReadsThePreset) {
   const YAML::Node root = loadConfigFile(presetPath(GetParam().file));
   ConfigSection top(root, "");
-  for (const char* k : {"lcm_url", "channel_prefix", "limits", "source", "run"}) top.allow(k);
+  allowPipelineTopLevelKeys(top);
   ConfigSection st = top.section("stereo_matcher");
   EXPECT_NO_THROW(stereo::readParams(st));
   allowServiceOnlyKeys(st, "stereo_matcher");
@@ -189,4 +189,19 @@ TEST(serviceKeys, InProcessToolsAcceptThePipelineConfigAndTheCameraPresets) {
 
 TEST(serviceKeys, AnUnknownServiceHasOnlyItsShard) {
   EXPECT_EQ(nerv::serviceOnlyKeys("source"), std::vector<std::string>{"shard"});
+}
+
+TEST(serviceKeys, TheWarmUpSizeIsBothOrNeither) {
+  const fs::path bin = binDir();
+  int checked = 0;
+  for (const char* service : kServices) {
+    if (!fs::exists(bin / service)) continue;
+    EXPECT_EQ(checkConfig(bin / service, "warmup:\n  width: 1242\n  height: 375\n"), 0) << service;
+    EXPECT_EQ(checkConfig(bin / service, "warmup: {}\n"), 0) << service << ": no size, no warm-up";
+    EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n"), 0) << service;
+    EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n  height: -1\n"), 0) << service;
+    EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n  height: 375\n  depth: 3\n"), 0) << service;
+    ++checked;
+  }
+  if (checked == 0) GTEST_SKIP() << "services not built in " << bin;
 }

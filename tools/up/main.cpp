@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "pipeline_keys.hpp"
 #include "lcm_node.hpp"
 #include "nerv/health_t.hpp"
 
@@ -121,8 +122,7 @@ int up(const Options& flags) {
   root.get("channel_prefix", config_prefix);
   if (o.lcm_url.empty()) o.lcm_url = config_url;
   if (o.prefix.empty()) o.prefix = config_prefix;
-  for (const char* k : {"limits", "stereo_matcher", "stixel", "snv_extrinsic", "validator", "source"})
-    root.allow(k);
+  allowPipelineTopLevelKeys(root);  // what the services and the source read
   ConfigSection run = root.section("run");
   std::string services_csv = "stereo_matcher,stixel,snv_extrinsic,validator";
   run.get("services", services_csv);
