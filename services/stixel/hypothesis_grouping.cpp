@@ -520,9 +520,10 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;
-  for (size_t gi = 0; gi < groups.size(); ++gi) {
-    const auto& g = groups[gi];
-    if (!tower[gi] && static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) {
+  // One hypothesis from group g (its box refined within [group_min_x, group_max_x)).
+  auto emit = [&](const std::vector<const Stixel*>& g, bool is_tower, int surround, int group_min_x,
+                  int group_max_x) {
+    if (!is_tower && static_cast<int>(g.size()) < std::max(1, p.min_stixels_per_hypothesis)) {
       // A lone tall stixel is a post or a sign, not noise.
       const Stixel& s = *g.front();
       const bool tall_single = g.size() == 1 && p.min_single_stixel_height_m > 0 &&
@@ -531,9 +532,9 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
                         std::any_of(input.posts->begin(), input.posts->end(), [&](const Stixel& x) {
                           return x.u == s.u && x.top_row == s.top_row && x.disparity == s.disparity;
                         });
-      if (!tall_single && !post) continue;
+      if (!tall_single && !post) return;
     }
-    if (!tower[gi] && isLowRun(g, cam, p.low_runs)) continue;  // a rail or kerb along the road (low_runs.hpp)
+    if (!is_tower && isLowRun(g, cam, p.low_runs)) return;  // a rail or kerb along the road (low_runs.hpp)
     int x0 = g.front()->u, x1 = g.front()->u + g.front()->width;
     int y0 = g.front()->top_row, y1 = g.front()->bottom_row;
     disp.clear();
@@ -547,12 +548,12 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     if (p.refine_boxes && input.disparity && input.ground) {
       PixelBox box{x0, x1, y0, y1};
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
-                p.tower_edges_above_surround ? clear_above[gi] : kNoSurround, min_x[gi], max_x[gi]);
+                p.tower_edges_above_surround ? surround : kNoSurround, group_min_x, group_max_x);
       widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
-      extendOverOccluders(*input.disparity, cam, *input.ground, g, p.occluded_sides, box, min_x[gi], max_x[gi]);
+      extendOverOccluders(*input.disparity, cam, *input.ground, g, p.occluded_sides, box, group_min_x, group_max_x);
       raiseBlendedTop(*input.disparity, cam, *input.ground, g, p.blended_top, box);
-      box.x0 = std::max(box.x0, min_x[gi]);
-      box.x1 = std::min(box.x1, max_x[gi]);
+      box.x0 = std::max(box.x0, group_min_x);
+      box.x1 = std::min(box.x1, group_max_x);
       x0 = box.x0, x1 = box.x1, y0 = box.y0;
     }
     // Nearest part (what a planner keeps its distance from): the 90th
@@ -588,8 +589,18 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     hy.disparity = d;
     hy.num_stixels = static_cast<int>(g.size());
     hy.nearest_z_m = static_cast<float>(cam.depthFromDisparity(d_near));
-    if (hy.height_m < p.min_obstacle_height_m || hy.distance_m > p.max_distance_m) continue;
+    if (hy.height_m < p.min_obstacle_height_m || hy.distance_m > p.max_distance_m) return;
     out.push_back(hy);
+  };
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    emit(groups[gi], tower[gi], clear_above[gi], min_x[gi], max_x[gi]);
+    // A lower road user in front of a taller one in the same group gets a box of
+    // its own too (nearer_fronts.hpp); the group's box stays the taller one's.
+    if (tower[gi] || !input.ground) continue;
+    const std::vector<const Stixel*> front = findNearerFront(groups[gi], cam, *input.ground, p.nearer_fronts);
+    if (!front.empty())
+      emit(front, false, kNoSurround, std::max(min_x[gi], front.front()->u),
+           std::min(max_x[gi], front.back()->u + front.back()->width));
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const Hypothesis& a, const Hypothesis& b) { return a.box.x < b.box.x; });

@@ -11,6 +11,7 @@
 #include "hedge_posts.hpp"
 #include "height_steps.hpp"
 #include "low_runs.hpp"
+#include "nearer_fronts.hpp"
 #include "person_pairs.hpp"
 #include "occluded_sides.hpp"
 #include "overhang_cut.hpp"
@@ -51,6 +52,7 @@ struct GroupingParams {
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
   SideSliverParams side_slivers;       // a narrow piece of a vehicle's receding side folds into it (side_slivers.hpp)
   RoofPieceParams roof_pieces;         // a small piece stacked on a vehicle's roof line, inside its box, is dropped (roof_pieces.hpp)
+  NearerFrontParams nearer_fronts;     // a lower road user in front of a taller one in the group gets its own box (nearer_fronts.hpp)
   LowRunParams low_runs;               // a low structure receding along the road gives no hypothesis (low_runs.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
   BlendedTopParams blended_top;        // a narrow far box raised over its head read as a blend (blended_tops.hpp)

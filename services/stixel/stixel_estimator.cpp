@@ -255,6 +255,11 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.side_slivers.length_per_height = params.side_length_per_height;
   gp.side_slivers.column_width_px = params.column_width_px;
   gp.roof_pieces = roofPieceParams(params);
+  gp.nearer_fronts.min_step_m = params.nearer_front_min_step_m;
+  gp.nearer_fronts.min_step_px = params.nearer_front_min_step_px;
+  gp.nearer_fronts.max_height_m = params.nearer_front_max_height_m;
+  gp.nearer_fronts.min_height_m = params.nearer_front_min_height_m;
+  gp.nearer_fronts.min_rise_m = params.nearer_front_min_rise_m;
   gp.low_runs.max_height_m = params.low_run_max_height_m;
   gp.low_runs.min_depth_span_m = params.low_run_min_depth_span_m;
   gp.low_runs.min_stixels = params.low_run_min_stixels;

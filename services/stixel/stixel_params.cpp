@@ -106,6 +106,11 @@ Params readParams(ConfigSection& c) {
   c.get("roof_piece_max_stixels", p.roof_piece_max_stixels, 0, 100);
   c.get("roof_piece_max_gap_px", p.roof_piece_max_gap_px, 0, 50);
   c.get("roof_piece_top_tolerance_px", p.roof_piece_top_tolerance_px, 0, 50);
+  c.get("nearer_front_min_step_m", p.nearer_front_min_step_m, 0.0, 100.0);
+  c.get("nearer_front_min_step_px", p.nearer_front_min_step_px, 0.0, 100.0);
+  c.get("nearer_front_max_height_m", p.nearer_front_max_height_m, 0.1, 10.0);
+  c.get("nearer_front_min_height_m", p.nearer_front_min_height_m, 0.0, 10.0);
+  c.get("nearer_front_min_rise_m", p.nearer_front_min_rise_m, 0.0, 10.0);
   c.get("low_run_max_height_m", p.low_run_max_height_m, 0.0, 10.0);
   c.get("low_run_min_depth_span_m", p.low_run_min_depth_span_m, 0.0, 200.0);
   c.get("low_run_min_stixels", p.low_run_min_stixels, 1, 1000);
