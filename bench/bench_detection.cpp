@@ -225,6 +225,26 @@ std::string programStamp() {
   return stamp;
 }
 
+// The folder of this build's entries under the cache root, build-<hash of the
+// stamp>. A build's maps are of no use to the next one, so the cache would grow
+// by the sets' maps at every rebuild (100 MB for the nine synthetic sets); when
+// a build's folder is made, all but the kKeptBuilds newest other build folders
+// go. Files directly in the root are older caches' and are left alone.
+std::string buildCacheDir(const std::string& root) {
+  constexpr size_t kKeptBuilds = 2;
+  const fs::path dir = fs::path(root) / ("build-" + std::to_string(std::hash<std::string>{}(programStamp())));
+  std::error_code ec;
+  if (fs::is_directory(dir, ec)) return dir.string();
+  std::vector<std::pair<fs::file_time_type, fs::path>> others;
+  for (const auto& e : fs::directory_iterator(root, ec))
+    if (e.is_directory(ec) && e.path().filename().string().rfind("build-", 0) == 0)
+      others.emplace_back(fs::last_write_time(e.path(), ec), e.path());
+  std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (size_t i = kKeptBuilds; i < others.size(); ++i) fs::remove_all(others[i].second, ec);
+  fs::create_directories(dir, ec);
+  return dir.string();
+}
+
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
                     const std::string& cache_dir, double& ms) {
   std::ostringstream key;
@@ -372,6 +392,8 @@ int main(int argc, char** argv) {
     const bool have_traps = fs::is_directory(o.data + "/trap_mask");
     if (!o.overlay.empty()) fs::create_directories(o.overlay);
 
+    fs::create_directories(o.cache);
+    const std::string cache_dir = buildCacheDir(o.cache);
     auto matcher = stereo::StereoMatcher::create(P.stereo);
     snv::SnvExtrinsicEstimator snv_est(P.snv);
     stixel::GroundPrior prior;
@@ -400,8 +422,8 @@ int main(int argc, char** argv) {
       const DatasetFrame& f = ds.frames[fi];
       double t_matcher = 0;
       const cv::Mat disp = o.oracle == "truth" ? trueDisparityOf(f)
-                           : o.oracle.empty() ? disparityOf(f, P.stereo, *matcher, o.cache, t_matcher)
-                                              : withOracle(disparityOf(f, P.stereo, *matcher, o.cache, t_matcher),
+                           : o.oracle.empty() ? disparityOf(f, P.stereo, *matcher, cache_dir, t_matcher)
+                                              : withOracle(disparityOf(f, P.stereo, *matcher, cache_dir, t_matcher),
                                                            trueDisparityOf(f), o.oracle);
       if (t_matcher > 0) ms_matcher.push_back(t_matcher);
 

@@ -4,6 +4,7 @@
 #  - the held-out sets at 2 frames: four rows, each the figures bench_detection
 #    itself prints for that folder;
 #  - a second run renders nothing (the sets are cached by generator + preset);
+#  - bench_detection's disparity cache is read back, per build, and pruned;
 #  - bench_detection --visible ignores hidden objects without --max-distance too;
 #  - --json holds the same figures;
 #  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
@@ -25,13 +26,28 @@ done
 [[ $(grep -c "rendering" "$out/first.err") == 4 ]] || fail "the first run should render four sets: $(cat "$out/first.err")"
 pass "four held-out sets rendered and scored"
 
-# The row is what bench_detection prints for that folder.
+# The row is what bench_detection prints for that folder. (Three folders of other
+# builds in its cache, the oldest to be pruned: checked below.)
+mkdir -p "$out/cache/build-old1" "$out/cache/build-old2" "$out/cache/build-old3"
+touch -d '3 days ago' "$out/cache/build-old1"; touch -d '2 days ago' "$out/cache/build-old2"
 "$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --visible --cache "$out/cache" \
   >"$out/bench.txt" 2>&1 || fail "bench_detection exited with $?"
 want=$(awk '/^stixel \+ SNV/ {printf "%.3f/%.3f/%.3f", $(NF-2), $(NF-1), $NF}' "$out/bench.txt")
 got=$(awk '$1 == "urban_14" {print $4}' "$out/first.txt")
 [[ -n "$want" && "$got" == "$want" ]] || fail "urban_14 row says $got, bench_detection says $want"
 pass "urban_14's row matches bench_detection ($got)"
+
+# The disparity cache: this build's maps in a folder of their own, read back on the
+# next run (nothing computed), and at most two other builds' folders kept.
+"$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --visible --cache "$out/cache" \
+  >"$out/bench2.txt" 2>&1 || fail "bench_detection exited with $?"
+grep -q 'nerv_sgm [0-9.]* / [0-9.]* (0 computed, rest cached)' "$out/bench2.txt" \
+  || fail "the second run computed maps again: $(grep 'ms per frame' "$out/bench2.txt")"
+cmp -s <(grep -v '^ms per frame' "$out/bench.txt") <(grep -v '^ms per frame' "$out/bench2.txt") \
+  || fail "the cached run printed other figures"
+[[ $(ls -d "$out"/cache/build-* | wc -l) == 3 && ! -e "$out/cache/build-old1" ]] \
+  || fail "the cache should hold this build and the two newest others: $(ls "$out/cache")"
+pass "the disparity cache is read back and keeps three builds"
 
 # Hidden objects (--visible) are ignored with or without a distance limit.
 objects() {
