@@ -65,6 +65,13 @@ ServiceConfig::ServiceConfig(const std::string& service, int argc, char** argv)
   if ((warmup_.width > 0) != (warmup_.height > 0))
     throw ConfigError("warmup: width and height are both 0 (off) or both set, got " + std::to_string(warmup_.width) +
                       " x " + std::to_string(warmup_.height));
+  if (warmup_.on() && (warmup_.width < 16 || warmup_.height < 16))
+    throw ConfigError("warmup: " + std::to_string(warmup_.width) + " x " + std::to_string(warmup_.height) +
+                      " is smaller than the smallest frame the limits allow (16 x 16)");
+  if (warmup_.width > options_.limits.max_width || warmup_.height > options_.limits.max_height)
+    throw ConfigError("warmup: " + std::to_string(warmup_.width) + " x " + std::to_string(warmup_.height) +
+                      " is larger than the frames the limits accept (" + std::to_string(options_.limits.max_width) +
+                      " x " + std::to_string(options_.limits.max_height) + ")");
   for (const char* name : kSections)
     if (service != name) root_.allow(name);
   section_ = root_.section(service);

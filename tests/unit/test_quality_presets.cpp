@@ -201,6 +201,9 @@ TEST(serviceKeys, TheWarmUpSizeIsBothOrNeither) {
     EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n"), 0) << service;
     EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n  height: -1\n"), 0) << service;
     EXPECT_NE(checkConfig(bin / service, "warmup:\n  width: 1242\n  height: 375\n  depth: 3\n"), 0) << service;
+    EXPECT_NE(checkConfig(bin / service, "limits: {max_width: 1000, max_height: 1000}\nwarmup: {width: 1242, height: 375}\n"),
+              0) << service << ": a warm-up larger than the limits accept";
+    EXPECT_NE(checkConfig(bin / service, "warmup: {width: 1, height: 1}\n"), 0) << service << ": below 16 x 16";
     ++checked;
   }
   if (checked == 0) GTEST_SKIP() << "services not built in " << bin;
