@@ -6,7 +6,7 @@
 // services run with is one the tool accepts (until 2026-12-05 bench_detection
 // rejected config/pipeline.yaml for the stixel service's
 // max_unobserved_fraction). A key added to a service's main belongs here too;
-// every service's --check-config accepts every key listed (serviceKeys.*).
+// every service's --check-config accepts every key listed (qualityServiceKeys.*).
 #pragma once
 
 #include <string>

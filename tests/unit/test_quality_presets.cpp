@@ -1,7 +1,7 @@
 // Camera presets config/cameras/*.yaml: every service accepts them
 // (--check-config on the real binaries, and readParams in-process), and the
 // stixel stage with the preset's parameters finds the road and a box in an
-// exact disparity rendered for that camera. serviceKeys.*: the keys a service's
+// exact disparity rendered for that camera. qualityServiceKeys.*: the keys a service's
 // main reads besides its algorithm's parameters (pipeline_keys.hpp) are accepted
 // by its --check-config, and the in-process tools accept the pipeline config and
 // the presets the services run with.
@@ -148,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(qualityCameras, qualityPresets, ::testing::ValuesIn(kPr
                            return n.substr(0, n.find('.'));
                          });
 
-TEST(serviceKeys, EveryServiceAcceptsEveryKeyListedForIt) {
+TEST(qualityServiceKeys, EveryServiceAcceptsEveryKeyListedForIt) {
   const fs::path bin = binDir();
   int checked = 0;
   for (const char* service : kServices) {
@@ -166,7 +166,7 @@ TEST(serviceKeys, EveryServiceAcceptsEveryKeyListedForIt) {
   if (checked == 0) GTEST_SKIP() << "services not built in " << bin;
 }
 
-TEST(serviceKeys, InProcessToolsAcceptThePipelineConfigAndTheCameraPresets) {
+TEST(qualityServiceKeys, InProcessToolsAcceptThePipelineConfigAndTheCameraPresets) {
   const fs::path bin = binDir();
   const std::string data = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
   const std::string disparity = std::string(NERV_SHARED_DATA) + "/kitti2015_000005";
@@ -187,11 +187,11 @@ TEST(serviceKeys, InProcessToolsAcceptThePipelineConfigAndTheCameraPresets) {
   fs::remove_all(cache);
 }
 
-TEST(serviceKeys, AnUnknownServiceHasOnlyItsShard) {
+TEST(qualityServiceKeys, AnUnknownServiceHasOnlyItsShard) {
   EXPECT_EQ(nerv::serviceOnlyKeys("source"), std::vector<std::string>{"shard"});
 }
 
-TEST(serviceKeys, TheWarmUpSizeIsBothOrNeither) {
+TEST(qualityServiceKeys, TheWarmUpSizeIsBothOrNeither) {
   const fs::path bin = binDir();
   int checked = 0;
   for (const char* service : kServices) {
