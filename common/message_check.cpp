@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "delta16_codec.hpp"
 #include "message_convert.hpp"
 
 namespace nerv {
@@ -104,6 +105,12 @@ Problem checkDisparity(const disparity_t& msg, const Limits& limits) {
     if (msg.size != 2LL * msg.width * msg.height)
       return problem("bad_size", "u16le disparity needs " +
                                      std::to_string(2LL * msg.width * msg.height) +
+                                     " bytes, has " + std::to_string(msg.size));
+  } else if (msg.encoding == "delta16") {
+    // 1 to 3 bytes a pixel (delta16_codec.hpp): the bounds before anything is decoded.
+    const size_t lo = delta16MinBytes(msg.width, msg.height), hi = delta16MaxBytes(msg.width, msg.height);
+    if (msg.data.size() < lo || msg.data.size() > hi)
+      return problem("bad_size", "delta16 disparity needs " + std::to_string(lo) + " to " + std::to_string(hi) +
                                      " bytes, has " + std::to_string(msg.size));
   } else if (msg.encoding != "png16") {
     return problem("bad_encoding", "disparity: unknown encoding '" + msg.encoding + "'");

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <limits>
 
+#include "delta16_codec.hpp"
+
 namespace nerv {
 
 namespace {
@@ -166,7 +168,7 @@ void encodeDisparity(const cv::Mat& disparity, const std::string& encoding, disp
   // encodes it from a matrix.
   cv::Mat fixed;
   uint16_t* out = nullptr;
-  if (encoding == "png16") {
+  if (encoding == "png16" || encoding == "delta16") {
     fixed.create(disparity.size(), CV_16U);
   } else {
     msg.data.resize(disparity.total() * 2);
@@ -186,7 +188,8 @@ void encodeDisparity(const cv::Mat& disparity, const std::string& encoding, disp
       o[u] = static_cast<uint16_t>(static_cast<int>(r));
     }
   }
-  if (!out) cv::imencode(".png", fixed, msg.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  if (encoding == "png16") cv::imencode(".png", fixed, msg.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  else if (encoding == "delta16") encodeDelta16(fixed, msg.data);
   msg.size = static_cast<int32_t>(msg.data.size());
 }
 
@@ -205,6 +208,9 @@ std::string decodeDisparity(const disparity_t& msg, cv::Mat& disparity) {
     }
     if (fixed.empty() || fixed.type() != CV_16U) return "png16 disparity cannot be decoded";
     if (fixed.cols != msg.width || fixed.rows != msg.height) return "png16 disparity size differs from header";
+  } else if (msg.encoding == "delta16") {
+    if (std::string why = decodeDelta16(msg.data.data(), msg.data.size(), msg.width, msg.height, fixed); !why.empty())
+      return why;
   } else {
     return "unknown disparity encoding '" + msg.encoding + "'";
   }

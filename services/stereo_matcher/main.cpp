@@ -24,7 +24,7 @@ cv::Mat toGray(const cv::Mat& image) {
 int serve(ServiceConfig& config) {
   const stereo::Params params = stereo::readParams(config.section());
   std::string encoding = "u16le";
-  config.section().get("output_encoding", encoding, {"u16le", "png16"});
+  config.section().get("output_encoding", encoding, {"u16le", "png16", "delta16"});
   int queue = 2;
   config.section().get("queue", queue, 1, 100);
   bool publish_confidence = true;

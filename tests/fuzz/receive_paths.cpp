@@ -277,10 +277,12 @@ std::vector<std::vector<uint8_t>> seedMessages(const std::string& type) {
     out.push_back(encode(f));
   } else if (type == "disparity") {
     out.push_back(encode(s.disparity_msg));
-    disparity_t d = s.disparity_msg;
-    encodeDisparity(s.disparity, "png16", d);
-    encodeConfidence(cv::Mat(), d);
-    out.push_back(encode(d));
+    for (const char* encoding : {"png16", "delta16"}) {  // the compressed encodings, seeds of their own
+      disparity_t d = s.disparity_msg;
+      encodeDisparity(s.disparity, encoding, d);
+      encodeConfidence(cv::Mat(), d);
+      out.push_back(encode(d));
+    }
   } else if (type == "stixels") {
     out.push_back(encode(s.stixels));
   } else if (type == "surface_normals") {

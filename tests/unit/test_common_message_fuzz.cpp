@@ -200,7 +200,11 @@ Bytes mutateDisparity(const Bytes& seed, std::mt19937& rng) {
     case 1: d.width = pickInt(rng); break;
     case 2: d.height = pickInt(rng); break;
     case 3: d.scale = pickFloat(rng); break;
-    case 4: d.encoding = (rng() % 2) ? "png16" : "u16le"; break;
+    case 4: {
+      const char* encodings[] = {"png16", "u16le", "delta16"};
+      d.encoding = encodings[rng() % 3];
+      break;
+    }
     case 5:
     case 6: {
       const size_t size_at = kHash + d.header._getEncodedSizeNoHash() + d.calib._getEncodedSizeNoHash() +
