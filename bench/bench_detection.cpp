@@ -56,13 +56,13 @@
 #include <vector>
 
 #include "config.hpp"
-#include "pipeline_keys.hpp"
 #include "dataset.hpp"
 #include "detection_eval.hpp"
 #include "distance_accuracy.hpp"
 #include "kitti_labels.hpp"
 #include "message_convert.hpp"
 #include "miss_causes.hpp"
+#include "pipeline_keys.hpp"
 #include "snv_extrinsic.hpp"
 #include "stereo_matcher.hpp"
 #include "stixel_estimator.hpp"
@@ -392,8 +392,7 @@ int main(int argc, char** argv) {
     const bool have_traps = fs::is_directory(o.data + "/trap_mask");
     if (!o.overlay.empty()) fs::create_directories(o.overlay);
 
-    fs::create_directories(o.cache);
-    const std::string cache_dir = buildCacheDir(o.cache);
+    const std::string cache_dir = buildCacheDir(o.cache);  // made with the root when missing
     auto matcher = stereo::StereoMatcher::create(P.stereo);
     snv::SnvExtrinsicEstimator snv_est(P.snv);
     stixel::GroundPrior prior;

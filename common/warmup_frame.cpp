@@ -43,23 +43,8 @@ cv::Rect boxRect(const StereoCamera& cam) {
 
 }  // namespace
 
-cv::Mat warmupDisparity(const StereoCamera& cam) {
-  const double h = kHeight, fb = cam.fx * cam.baseline_m;
-  cv::Mat d(cam.height, cam.width, CV_32F, cv::Scalar(0));
-  for (int v = 0; v < cam.height; ++v) {
-    float* row = d.ptr<float>(v);
-    const double below = v - cam.cy;
-    // Road: Y = h at depth Z = fy h / (v - cy), so d = B (v - cy) / h (fx = fy); above: the wall.
-    const float value = below > 0 ? static_cast<float>(cam.baseline_m * below * cam.fx / (cam.fy * h))
-                                  : static_cast<float>(fb / kWallZ);
-    std::fill(row, row + cam.width, value);
-  }
-  const cv::Rect box = boxRect(cam);
-  if (box.area() > 0) d(box).setTo(static_cast<float>(fb / kBoxZ));
-  return d;
-}
-
 GroundModel warmupGround(const StereoCamera& cam) {
+  // A road Y = h below the camera at depth Z = fy h / (v - cy): d = fx B (v - cy) / (fy h).
   GroundModel g;
   g.valid = true;
   g.source = "v_disparity";
@@ -68,6 +53,21 @@ GroundModel warmupGround(const StereoCamera& cam) {
   g.horizon_row = static_cast<float>(cam.cy);
   g.height_m = static_cast<float>(kHeight);
   return g;
+}
+
+cv::Mat warmupDisparity(const StereoCamera& cam) {
+  const double fb = cam.fx * cam.baseline_m;
+  const GroundModel road = warmupGround(cam);
+  cv::Mat d(cam.height, cam.width, CV_32F, cv::Scalar(0));
+  for (int v = 0; v < cam.height; ++v) {
+    float* row = d.ptr<float>(v);
+    // The road below the horizon, the wall above it.
+    const float value = v > cam.cy ? road.groundDisparity(static_cast<float>(v)) : static_cast<float>(fb / kWallZ);
+    std::fill(row, row + cam.width, value);
+  }
+  const cv::Rect box = boxRect(cam);
+  if (box.area() > 0) d(box).setTo(static_cast<float>(fb / kBoxZ));
+  return d;
 }
 
 std::vector<Hypothesis> warmupHypotheses(const StereoCamera& cam) {
