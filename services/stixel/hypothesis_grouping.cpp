@@ -517,6 +517,16 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       cutOverhang(*input.disparity, cam, *input.ground, m, p.overhang);
     }
   }
+  // A layer just behind a wide group's top (layered_tops.hpp).
+  if (p.layer_tops.min_separation_m > 0 && input.disparity && input.ground) {
+    std::vector<Stixel*> m;
+    for (size_t gi = 0; gi < groups.size(); ++gi) {
+      if (tower[gi]) continue;
+      m.clear();
+      for (const Stixel* s : groups[gi]) m.push_back(&own[static_cast<size_t>(s - own.data())]);
+      lowerLayeredTops(*input.disparity, cam, *input.ground, m, p.layer_tops);
+    }
+  }
 
   std::vector<Hypothesis> out;
   std::vector<float> disp;

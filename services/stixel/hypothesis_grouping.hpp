@@ -10,6 +10,7 @@
 #include "gap_strips.hpp"
 #include "hedge_posts.hpp"
 #include "height_steps.hpp"
+#include "layered_tops.hpp"
 #include "low_runs.hpp"
 #include "nearer_fronts.hpp"
 #include "person_pairs.hpp"
@@ -55,6 +56,7 @@ struct GroupingParams {
   NearerFrontParams nearer_fronts;     // a lower road user in front of a taller one in the group gets its own box (nearer_fronts.hpp)
   LowRunParams low_runs;               // a low structure receding along the road gives no hypothesis (low_runs.hpp)
   OverhangParams overhang;             // stixel tops cut below an overhang beside the group (overhang_cut.hpp)
+  LayerTopParams layer_tops;           // tops that ran up a surface just behind a wide group are lowered (layered_tops.hpp)
   BlendedTopParams blended_top;        // a narrow far box raised over its head read as a blend (blended_tops.hpp)
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;

@@ -269,6 +269,11 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.overhang.min_width_m = params.overhang_min_width_m;
   gp.overhang.max_width_m = params.overhang_max_width_m;
   gp.overhang.max_distance_m = params.overhang_max_distance_m;
+  gp.layer_tops.min_separation_m = params.layer_top_min_separation_m;
+  gp.layer_tops.min_separation_px = params.layer_top_min_separation_px;
+  gp.layer_tops.min_layer_share = params.layer_top_min_share;
+  gp.layer_tops.min_width_m = params.layer_top_min_width_m;
+  gp.layer_tops.ground_tolerance_m = params.ground_tolerance_m;
   gp.overhang.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.overhang.ground_tolerance_m = params.ground_tolerance_m;
   gp.overhang.column_width_px = params.column_width_px;

@@ -120,6 +120,10 @@ Params readParams(ConfigSection& c) {
   c.get("overhang_min_width_m", p.overhang_min_width_m, 0.0, 10.0);
   c.get("overhang_max_width_m", p.overhang_max_width_m, 0.0, 100.0);
   c.get("overhang_max_distance_m", p.overhang_max_distance_m, 0.0, 500.0);
+  c.get("layer_top_min_separation_m", p.layer_top_min_separation_m, 0.0, 100.0);
+  c.get("layer_top_min_separation_px", p.layer_top_min_separation_px, 0.0, 100.0);
+  c.get("layer_top_min_share", p.layer_top_min_share, 0.0, 1.0);
+  c.get("layer_top_min_width_m", p.layer_top_min_width_m, 0.0, 100.0);
   c.get("blended_top_max_extension_m", p.blended_top_max_extension_m, 0.0, 3.0);
   c.get("blended_top_max_width_m", p.blended_top_max_width_m, 0.1, 10.0);
   c.get("blended_top_min_top_m", p.blended_top_min_top_m, 0.0, 5.0);
