@@ -453,7 +453,9 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     // A background gap's strips [lo, hi) are dropped from both parts (gap_strips.hpp).
     int lo = cut_u, hi = cut_u;
     if (cut_u < 0) {
-      const GapCut gap = findGapStrips(groups[gi], cam, input.ground, p.gap_strips);
+      GapCut gap = findGapStrips(groups[gi], cam, input.ground, p.gap_strips);
+      if (!gap.found && input.disparity && input.ground)
+        gap = findGapColumns(groups[gi], *input.disparity, cam, *input.ground, p.gap_columns);
       if (!gap.found) continue;
       lo = gap.lo, hi = gap.hi;
     }

@@ -7,6 +7,7 @@
 
 #include "blended_tops.hpp"
 #include "box_refinement.hpp"
+#include "gap_columns.hpp"
 #include "gap_strips.hpp"
 #include "hedge_posts.hpp"
 #include "height_steps.hpp"
@@ -50,6 +51,7 @@ struct GroupingParams {
   float min_single_stixel_height_m = 0.0f;  // a lone stixel this tall is a hypothesis; 0 = never
   HeightStepParams height_steps;       // a road user beside a lower vehicle at its depth leaves its group (height_steps.hpp)
   GapStripParams gap_strips;           // a road user cut off at the background gap beside it (gap_strips.hpp)
+  GapColumnParams gap_columns;         // ... or at a gap narrower than a strip, column by column (gap_columns.hpp)
   PersonPairParams person_pairs;       // two pedestrians side by side are cut at the step between them (person_pairs.hpp)
   SideSliverParams side_slivers;       // a narrow piece of a vehicle's receding side folds into it (side_slivers.hpp)
   RoofPieceParams roof_pieces;         // a small piece stacked on a vehicle's roof line, inside its box, is dropped (roof_pieces.hpp)

@@ -237,6 +237,11 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.gap_strips.max_height_m = params.gap_strip_max_height_m;
   gp.gap_strips.max_spread_px = params.gap_strip_max_spread_px;
   gp.gap_strips.min_end_stixels = params.min_stixels_per_hypothesis;
+  gp.gap_columns.min_dip_px = params.gap_column_min_dip_px;
+  gp.gap_columns.min_rise_px = params.gap_column_min_rise_px;
+  gp.gap_columns.min_background_m = params.gap_column_min_background_m;
+  gp.gap_columns.ground_tolerance_m = params.ground_tolerance_m;
+  gp.gap_columns.ends = gp.gap_strips;
   gp.person_pairs.min_step_px = params.person_pair_min_step_px;
   gp.person_pairs.min_step_m = params.person_pair_min_step_m;
   gp.person_pairs.min_width_m = params.person_pair_min_width_m;

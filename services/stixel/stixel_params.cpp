@@ -89,6 +89,9 @@ Params readParams(ConfigSection& c) {
   c.get("gap_strip_min_height_m", p.gap_strip_min_height_m, 0.0, 10.0);
   c.get("gap_strip_max_height_m", p.gap_strip_max_height_m, 0.0, 10.0);
   c.get("gap_strip_max_spread_px", p.gap_strip_max_spread_px, 0.0, 100.0);
+  c.get("gap_column_min_dip_px", p.gap_column_min_dip_px, 0.0, 100.0);
+  c.get("gap_column_min_rise_px", p.gap_column_min_rise_px, 0.0, 100.0);
+  c.get("gap_column_min_background_m", p.gap_column_min_background_m, 0.0, 100.0);
   c.get("person_pair_min_step_px", p.person_pair_min_step_px, 0.0, 100.0);
   c.get("person_pair_min_step_m", p.person_pair_min_step_m, 0.0, 100.0);
   c.get("person_pair_min_width_m", p.person_pair_min_width_m, 0.0, 10.0);

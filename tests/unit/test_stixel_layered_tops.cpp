@@ -4,14 +4,11 @@
 // off keep their tops; the keys.
 #include <gtest/gtest.h>
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
 
-#include "config.hpp"
-#include "ground_geometry.hpp"
 #include "layered_tops.hpp"
-#include "stixel_estimator.hpp"
+#include "stixel_key_checks.hpp"
+#include "stixel_test_stixels.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
@@ -22,22 +19,10 @@ class stixelLayeredTops : public ::testing::Test {
   const StereoCamera cam = kittiLikeCamera();
   const RoadScene scene;
   cv::Mat disp = renderDisparity(scene, cam);
-  const float slope = static_cast<float>(cam.baseline_m * cam.fx / (cam.fy * 1.65));
-  const GroundModel g = groundModelFromLine(slope, static_cast<float>(-slope * cam.cy), cam, "v_disparity");
+  const GroundModel g = levelRoad(cam);
 
-  int rowAt(double z, double height_m) const {
-    return static_cast<int>(std::lround(cam.cy + cam.fy * (1.65 - height_m) / z));
-  }
-  Stixel stixelAt(int u, double z, double top_m) const {
-    Stixel s;
-    s.u = u;
-    s.width = 5;
-    s.disparity = static_cast<float>(cam.disparityFromDepth(z));
-    s.depth_m = static_cast<float>(z);
-    s.bottom_row = rowAt(z, 0.0);
-    s.top_row = rowAt(z, top_m);
-    return s;
-  }
+  int rowAt(double z, double height_m) const { return stixelOnRoad(cam, 0, z, height_m).top_row; }
+  Stixel stixelAt(int u, double z, double top_m) const { return stixelOnRoad(cam, u, z, top_m); }
   static LayerTopParams on() {
     LayerTopParams p;
     p.min_separation_m = 1.0f;
@@ -100,21 +85,12 @@ TEST_F(stixelLayeredTops, ANarrowGroupIsLeftAlone) {
 }
 
 TEST_F(stixelLayeredTops, KeysAreReadAndRangeChecked) {
-  auto read = [](const char* yaml) {
-    const YAML::Node root = YAML::Load(yaml);
-    ConfigSection all(root, "");
-    ConfigSection stixel = all.section("stixel");
-    return readParams(stixel);
-  };
-  const Params p = read(
-      "stixel: {layer_top_min_separation_m: 1.2, layer_top_min_separation_px: 0.6, layer_top_min_share: 0.7, "
-      "layer_top_min_width_m: 1.5}");
-  EXPECT_FLOAT_EQ(p.layer_top_min_separation_m, 1.2f);
-  EXPECT_FLOAT_EQ(p.layer_top_min_separation_px, 0.6f);
-  EXPECT_FLOAT_EQ(p.layer_top_min_share, 0.7f);
-  EXPECT_FLOAT_EQ(p.layer_top_min_width_m, 1.5f);
-  EXPECT_THROW(read("stixel: {layer_top_min_share: 1.5}"), ConfigError);
-  EXPECT_THROW(read("stixel: {layer_top_min_width_m: -1}"), ConfigError);
+  expectFloatKeysRead({{"layer_top_min_separation_m", &Params::layer_top_min_separation_m},
+                       {"layer_top_min_separation_px", &Params::layer_top_min_separation_px},
+                       {"layer_top_min_share", &Params::layer_top_min_share},
+                       {"layer_top_min_width_m", &Params::layer_top_min_width_m}},
+                      {1.2, 0.6, 0.7, 1.5});
+  expectRejected("layer_top_min_share", 1.5);
 }
 
 }  // namespace
