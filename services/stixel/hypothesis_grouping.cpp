@@ -449,9 +449,13 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     if (tower[gi]) continue;
     int cut_u = findHeightStep(groups[gi], cam, input.ground, p.height_steps);
-    if (cut_u < 0) cut_u = findPersonPair(groups[gi], cam, input.ground, p.person_pairs);
-    // A background gap's strips [lo, hi) are dropped from both parts (gap_strips.hpp).
+    // A background gap's strips [lo, hi) are dropped from both parts (gap_strips.hpp),
+    // and so is the blended strip between two pedestrians (person_pairs.hpp).
     int lo = cut_u, hi = cut_u;
+    if (cut_u < 0) {
+      const GapCut pair = findPersonPair(groups[gi], cam, input.ground, p.person_pairs);
+      if (pair.found) cut_u = lo = pair.lo, hi = pair.hi;
+    }
     if (cut_u < 0) {
       GapCut gap = findGapStrips(groups[gi], cam, input.ground, p.gap_strips);
       if (!gap.found && input.disparity && input.ground)

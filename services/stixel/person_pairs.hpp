@@ -5,11 +5,17 @@
 // two parts, each of a person's width and height and flat in disparity, with
 // a clear disparity step between them (one stands a little behind the other),
 // is cut at that step. A vehicle's rear is flat across its width (no step)
-// and its side is a ramp (not flat), so neither is cut.
+// and its side is a ramp (not flat), so neither is cut. Where the matcher
+// blends the two over the strip between them (urban seed 12 frame 5: 24.6-
+// 25.0 px | 25.5 | 26.1-26.4 at 15 m), up to max_blend_strips strips reading
+// between the parts' disparities belong to neither and are dropped, when
+// each part spans at least min_blend_part_strips: at 30 m a person is two or
+// three strips, and an occluded car's receding side and rear read the same.
 #pragma once
 
 #include <vector>
 
+#include "gap_strips.hpp"
 #include "perception_types.hpp"
 #include "stereo_camera.hpp"
 
@@ -23,11 +29,14 @@ struct PersonPairParams {
   float min_height_m = 1.4f;     // each part's median top this high over the road [m] ...
   float max_height_m = 2.2f;     // ... and at most this high
   float max_spread_px = 0.5f;    // each part's stixel disparities within this [px]
+  int max_blend_strips = 0;      // strips between the parts reading between them (the matcher's blend), dropped ...
+  int min_blend_part_strips = 3; // ... when each part spans at least this many strips (farther, a blend is a ramp's step)
 };
 
-// group: the stixels of one group, left to right. Returns the column where
-// the group is to be cut (stixels with u below it form the left part), or -1.
-int findPersonPair(const std::vector<const Stixel*>& group, const StereoCamera& cam,
-                   const GroundModel* ground, const PersonPairParams& p);
+// group: the stixels of one group, left to right. Returns the columns [lo, hi)
+// of the cut (stixels with u below lo form the left part, from hi on the
+// right; lo == hi without a blended strip); found = false: no cut.
+GapCut findPersonPair(const std::vector<const Stixel*>& group, const StereoCamera& cam, const GroundModel* ground,
+                      const PersonPairParams& p);
 
 }  // namespace nerv::stixel

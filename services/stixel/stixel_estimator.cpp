@@ -249,6 +249,8 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.person_pairs.min_height_m = params.person_pair_min_height_m;
   gp.person_pairs.max_height_m = params.person_pair_max_height_m;
   gp.person_pairs.max_spread_px = params.person_pair_max_spread_px;
+  gp.person_pairs.max_blend_strips = params.person_pair_max_blend_strips;
+  gp.person_pairs.min_blend_part_strips = params.person_pair_min_blend_part_strips;
   gp.side_slivers.max_stixels = params.side_sliver_max_stixels;
   gp.side_slivers.max_width_m = params.side_sliver_max_width_m;
   gp.side_slivers.min_host_width_m = params.side_sliver_min_host_width_m;

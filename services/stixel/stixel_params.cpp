@@ -99,6 +99,8 @@ Params readParams(ConfigSection& c) {
   c.get("person_pair_min_height_m", p.person_pair_min_height_m, 0.0, 10.0);
   c.get("person_pair_max_height_m", p.person_pair_max_height_m, 0.0, 10.0);
   c.get("person_pair_max_spread_px", p.person_pair_max_spread_px, 0.0, 100.0);
+  c.get("person_pair_max_blend_strips", p.person_pair_max_blend_strips, 0, 3);
+  c.get("person_pair_min_blend_part_strips", p.person_pair_min_blend_part_strips, 1, 100);
   c.get("side_sliver_max_stixels", p.side_sliver_max_stixels, 0, 100);
   c.get("side_sliver_max_width_m", p.side_sliver_max_width_m, 0.0, 10.0);
   c.get("side_sliver_min_host_width_m", p.side_sliver_min_host_width_m, 0.0, 20.0);

@@ -1,14 +1,18 @@
 // Two pedestrians side by side (person_pairs.hpp): on rendered disparity a
 // pair one behind the other by 0.8 m gets two boxes, a car's flat rear of the
-// same width stays one; the keys.
+// same width stays one; with a blended strip between the two the pair is cut
+// and the strip dropped, but not when the parts are two strips each (far);
+// the keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 
+#include "person_pairs.hpp"
 #include "stixel_estimator.hpp"
 #include "stixel_key_checks.hpp"
+#include "stixel_test_stixels.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
@@ -50,6 +54,42 @@ TEST(stixelPersonPairs, ACarsFlatRearStaysWhole) {
   EXPECT_EQ(countNear(estimateStixels(disp, cam, Params{}).hypotheses, 14.0f, 16.0f), 1);
 }
 
+TEST(stixelPersonPairs, ABlendedStripBetweenThePairIsDropped) {
+  // Urban seed 12 frame 5: 24.6-25.0 px | 25.5 | 26.1-26.4 at 15 m, heads lost
+  // (tops 1.55 m); the pair, the blend and a far pair of two strips a side.
+  const StereoCamera cam = kittiLikeCamera();
+  const GroundModel g = levelRoad(cam);
+  PersonPairParams p;
+  p.min_step_px = 0.8f;
+  p.max_blend_strips = 1;
+  auto pair = [&](double z_left, double z_blend, double z_right, int strips) {
+    std::vector<Stixel> own;
+    int u = 900;
+    for (int k = 0; k < strips; ++k, u += 5) own.push_back(stixelOnRoad(cam, u, z_left, 1.55));
+    own.push_back(stixelOnRoad(cam, u, z_blend, 1.55)), u += 5;
+    for (int k = 0; k < strips; ++k, u += 5) own.push_back(stixelOnRoad(cam, u, z_right, 1.55));
+    return own;
+  };
+  auto cutOf = [&](const std::vector<Stixel>& own, const PersonPairParams& q) {
+    std::vector<const Stixel*> group;
+    for (const Stixel& s : own) group.push_back(&s);
+    return findPersonPair(group, cam, &g, q);
+  };
+  const std::vector<Stixel> near = pair(15.75, 15.25, 14.8, 5);
+  const GapCut c = cutOf(near, p);
+  ASSERT_TRUE(c.found);
+  EXPECT_EQ(c.lo, 925) << "the left part keeps its five strips";
+  EXPECT_EQ(c.hi, 930) << "the blended strip belongs to neither";
+  PersonPairParams none = p;
+  none.max_blend_strips = 0;
+  EXPECT_FALSE(cutOf(near, none).found) << "without the blend the parts are not flat";
+  // At 32 m a person is two strips: a blend there reads like a car's receding side.
+  EXPECT_FALSE(cutOf(pair(33.0, 31.2, 29.5, 2), p).found);
+  PersonPairParams two = p;
+  two.min_blend_part_strips = 2;
+  EXPECT_TRUE(cutOf(pair(33.0, 31.2, 29.5, 2), two).found) << "control: the far pair is cut with two strips a side";
+}
+
 TEST(stixelPersonPairs, KeysAreReadAndRangeChecked) {
   YAML::Node n;
   n["person_pair_min_step_px"] = 1.0;
@@ -59,6 +99,8 @@ TEST(stixelPersonPairs, KeysAreReadAndRangeChecked) {
   n["person_pair_min_height_m"] = 1.3;
   n["person_pair_max_height_m"] = 2.1;
   n["person_pair_max_spread_px"] = 0.6;
+  n["person_pair_max_blend_strips"] = 2;
+  n["person_pair_min_blend_part_strips"] = 4;
   ConfigSection c(n, "stixel");
   const Params p = readParams(c);
   EXPECT_NO_THROW(c.finish());
@@ -69,10 +111,13 @@ TEST(stixelPersonPairs, KeysAreReadAndRangeChecked) {
   EXPECT_FLOAT_EQ(p.person_pair_min_height_m, 1.3f);
   EXPECT_FLOAT_EQ(p.person_pair_max_height_m, 2.1f);
   EXPECT_FLOAT_EQ(p.person_pair_max_spread_px, 0.6f);
+  EXPECT_EQ(p.person_pair_max_blend_strips, 2);
+  EXPECT_EQ(p.person_pair_min_blend_part_strips, 4);
   for (const char* key : {"person_pair_min_step_px", "person_pair_min_step_m", "person_pair_min_width_m",
                           "person_pair_max_width_m", "person_pair_min_height_m", "person_pair_max_height_m",
-                          "person_pair_max_spread_px"})
+                          "person_pair_max_spread_px", "person_pair_max_blend_strips", "person_pair_min_blend_part_strips"})
     expectRejected(key, -1.0);
+  expectRejected("person_pair_max_blend_strips", 4);
 }
 
 }  // namespace
