@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "ground_geometry.hpp"
 #include "height_steps.hpp"
@@ -177,7 +175,6 @@ GapCut findGapColumns(const std::vector<const Stixel*>& group, const cv::Mat& di
       // Each end strip stays on its side even when the gap starts inside it.
       c.lo = from_left ? std::max(gap_first, s[b - 1]->u + 1) : u + 1;
       c.hi = from_left ? u : std::min(gap_first + 1, s[a]->u);
-      if (std::getenv("GCDBG")) std::fprintf(stderr, "gapcol from_left %d k %d end %d-%d plateau %.2f gap %d-%d deepest %.2f cut %d-%d\n", from_left, k, s[a]->u, s[b-1]->u + s[b-1]->width, plateau, gap_first, gap_last, deepest, c.lo, c.hi);
       return c;
     }
   }
