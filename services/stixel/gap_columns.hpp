@@ -29,6 +29,7 @@ namespace nerv::stixel {
 struct GapColumnParams {
   float min_dip_px = 0.0f;   // the gap's column medians lie this much farther than the end (0 = off) ...
   float min_rise_px = 0.4f;  // ... and the far side rises this much above the gap's deepest column
+  int max_inside_px = 2;     // ... starting at most this many columns inside the end's strips
   int far_side_px = 10;      // ... within this many columns after the gap (two strips), and is not the end's surface
   float min_height_step_m = 0.2f;   // ... the far side is no flat continuation of the end: off its depth, a ramp, or this much taller or lower
   float min_background_m = 2.0f;     // ... and a quarter of some gap column's pixels lie this far behind the end

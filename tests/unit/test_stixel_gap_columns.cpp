@@ -2,7 +2,8 @@
 // the near end of a van's receding side is cut off at the gap column by
 // column; a dip inside a van's flat rear is no gap (the far side is the same
 // surface), unless what follows it differs in height; a car's side receding
-// to the group's end is no gap; the rule switched off; the keys.
+// to the group's end is no gap; a dip inside a far pedestrian is not cut; the
+// rule switched off; the keys.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -99,6 +100,30 @@ TEST_F(stixelGapColumns, ASideRecedingToTheGroupsEndIsNoGap) {
   for (int u = side_u0; u < rear.u0; u += 5) addStixel(u, 23.5, 1.5);
   for (int u = rear.u0; u + 5 <= rear.u1; u += 5) addStixel(u, 22.0, 1.5);
   EXPECT_FALSE(findGapColumns(group(), disp, cam, g, on()).found);
+}
+
+TEST_F(stixelGapColumns, ADipInsideAFarPedestrianIsNotCut) {
+  // Urban seed 13 on the rendered disparity, 36-38 m: the facade shows
+  // between a pedestrian's arm and body, 4 columns inside the right edge of
+  // its two strips, and a van's side rises right after it.
+  paintFace(disp, scene, cam, 45.0f, 0.0, 4.0, 0.0, 4.0);
+  const FaceColumns person = paintFace(disp, scene, cam, 35.0f, 1.0, 1.0 + 10 * 35.0 / cam.fx, 0.0, 1.7);
+  ASSERT_EQ(person.u1 - person.u0, 10);
+  const int arm = person.u1 - 4;
+  paintFace(disp, scene, cam, 45.0f, (arm - cam.cx) * 45.0 / cam.fx, (arm + 1 - cam.cx) * 45.0 / cam.fx, 0.0, 1.7 * 45.0 / 35.0);
+  for (double z = 35.0; z > 31.0; z -= 0.5)  // the side, from the person's edge on, nearer to the right
+    paintFace(disp, scene, cam, static_cast<float>(z), (person.u1 + (35.0 - z) * 2 - cam.cx) * z / cam.fx,
+              (person.u1 + (35.0 - z) * 2 + 1 - cam.cx) * z / cam.fx, 0.0, 2.4);
+  addStixel(person.u0, 35.0, 1.7);
+  addStixel(person.u0 + 5, 35.0, 1.7);
+  addStixel(person.u0 + 10, 34.0, 2.4);
+  addStixel(person.u0 + 15, 32.5, 2.4);
+  EXPECT_FALSE(findGapColumns(group(), disp, cam, g, on()).found);
+  GapColumnParams deep = on();
+  deep.max_inside_px = 10;  // control: allowed that deep, the dip cuts the pedestrian
+  const GapCut c = findGapColumns(group(), disp, cam, g, deep);
+  ASSERT_TRUE(c.found);
+  EXPECT_LT(c.lo, person.u1 - 2);
 }
 
 TEST_F(stixelGapColumns, KeysAreReadAndRangeChecked) {
