@@ -6,6 +6,7 @@
 #include "ground_geometry.hpp"
 #include "height_steps.hpp"
 #include "nearest_per_strip.hpp"
+#include "strip_run.hpp"
 
 namespace nerv::stixel {
 namespace {
@@ -73,31 +74,23 @@ GapCut findGapColumns(const std::vector<const Stixel*>& group, const cv::Mat& di
   for (int from_left = 1; from_left >= 0; --from_left) {
     for (int k = std::max(1, e.min_end_stixels); k < n; ++k) {
       const int a = from_left ? 0 : n - k, b = from_left ? k : n;
-      const float width_m = (s[b - 1]->u + s[b - 1]->width - s[a]->u) * s[a]->depth_m / fx;
-      if (width_m > e.max_end_width_m) break;
-      float lo = s[a]->disparity, hi = lo;
-      h.clear(), tops.clear(), bottoms.clear();
+      // The road user's end: its plateau is the median of its strips' disparities.
+      const StripRun end = describeRun(s, static_cast<size_t>(a), static_cast<size_t>(b), cam, &ground);
+      if (end.width_m > e.max_end_width_m) break;
+      if (end.spread_px > e.max_spread_px) continue;
+      const float end_h = end.median_h, plateau = end.median_d;
+      if (end_h < e.min_height_m || end_h > e.max_height_m) continue;
+      tops.clear(), bottoms.clear();
       for (int j = a; j < b; ++j) {
-        lo = std::min(lo, s[j]->disparity), hi = std::max(hi, s[j]->disparity);
-        h.push_back(topHeightOverRoad(*s[j], cam, &ground));
         tops.push_back(static_cast<float>(s[j]->top_row));
         bottoms.push_back(static_cast<float>(s[j]->bottom_row));
       }
-      if (hi - lo > e.max_spread_px) continue;
-      const size_t m = h.size() / 2;
-      std::nth_element(h.begin(), h.begin() + m, h.end());
-      const float end_h = h[m];
-      if (end_h < e.min_height_m || end_h > e.max_height_m) continue;
+      const size_t m = tops.size() / 2;
       std::nth_element(tops.begin(), tops.begin() + m, tops.end());
       std::nth_element(bottoms.begin(), bottoms.begin() + m, bottoms.end());
       const int v0 = std::max(0, static_cast<int>(tops[m]));
       const int v1 = std::min(disparity.rows - 1, static_cast<int>(bottoms[m]));
       if (v1 - v0 < 4) continue;
-      // The end's plateau: the median of its strips' disparities.
-      std::vector<float> d;
-      for (int j = a; j < b; ++j) d.push_back(s[j]->disparity);
-      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-      const float plateau = d[d.size() / 2];
       const double z_end = cam.depthFromDisparity(plateau);
       auto farther = [&](float x) {
         return x > 0 && x <= plateau - p.min_dip_px && cam.depthFromDisparity(x) - z_end >= e.min_dip_m;

@@ -513,24 +513,18 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     }
   }
 
-  // Overhangs last: a tree's trunk must still be a structure when the
-  // structure split runs, or the pedestrian beside it stays in its group.
-  if (p.overhang.min_reach_m > 0 && input.disparity && input.ground) {
-    std::vector<Stixel*> m;
-    for (const auto& g : groups) {
-      m.clear();
-      for (const Stixel* s : g) m.push_back(&own[static_cast<size_t>(s - own.data())]);
-      cutOverhang(*input.disparity, cam, *input.ground, m, p.overhang);
-    }
-  }
-  // A layer just behind a wide group's top (layered_tops.hpp).
-  if (p.layer_tops.min_separation_m > 0 && input.disparity && input.ground) {
+  // Tops lowered last, each group on its own stixels: below an overhang (a
+  // tree's trunk must still be a structure when the structure split runs, or
+  // the pedestrian beside it stays in its group), then below a layer just
+  // behind a wide group's top (layered_tops.hpp; not a tower's).
+  const bool overhangs = p.overhang.min_reach_m > 0, layers = p.layer_tops.min_separation_m > 0;
+  if ((overhangs || layers) && input.disparity && input.ground) {
     std::vector<Stixel*> m;
     for (size_t gi = 0; gi < groups.size(); ++gi) {
-      if (tower[gi]) continue;
       m.clear();
       for (const Stixel* s : groups[gi]) m.push_back(&own[static_cast<size_t>(s - own.data())]);
-      lowerLayeredTops(*input.disparity, cam, *input.ground, m, p.layer_tops);
+      if (overhangs) cutOverhang(*input.disparity, cam, *input.ground, m, p.overhang);
+      if (layers && !tower[gi]) lowerLayeredTops(*input.disparity, cam, *input.ground, m, p.layer_tops);
     }
   }
 

@@ -3,33 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "height_steps.hpp"
 #include "nearest_per_strip.hpp"
+#include "strip_run.hpp"
 
 namespace nerv::stixel {
-
-namespace {
-
-struct Part {
-  float width_m = 0, median_h = 0, median_d = 0, spread_px = 0;
-};
-
-Part describe(const std::vector<const Stixel*>& s, size_t a, size_t b, const StereoCamera& cam,
-              const GroundModel* ground) {
-  Part part;
-  std::vector<float> h, d;
-  for (size_t k = a; k < b; ++k) h.push_back(topHeightOverRoad(*s[k], cam, ground)), d.push_back(s[k]->disparity);
-  const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
-  part.spread_px = *hi - *lo;
-  std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  part.median_h = h[h.size() / 2];
-  part.median_d = d[d.size() / 2];
-  part.width_m = (s[b - 1]->u + s[b - 1]->width - s[a]->u) * s[a]->depth_m / static_cast<float>(cam.fx);
-  return part;
-}
-
-}  // namespace
 
 GapCut findPersonPair(const std::vector<const Stixel*>& group, const StereoCamera& cam, const GroundModel* ground,
                       const PersonPairParams& p) {
@@ -42,7 +19,7 @@ GapCut findPersonPair(const std::vector<const Stixel*>& group, const StereoCamer
     if (x->bottom_row >= cam.height - 2) return none;  // cut by the image's bottom edge
   const float total_m = (s[n - 1]->u + s[n - 1]->width - s[0]->u) * s[0]->depth_m / static_cast<float>(cam.fx);
   if (total_m > 2 * p.max_width_m) return none;
-  auto person = [&](const Part& x) {
+  auto person = [&](const StripRun& x) {
     return x.width_m >= p.min_width_m && x.width_m <= p.max_width_m && x.median_h >= p.min_height_m &&
            x.median_h <= p.max_height_m && x.spread_px <= p.max_spread_px;
   };
@@ -54,7 +31,7 @@ GapCut findPersonPair(const std::vector<const Stixel*>& group, const StereoCamer
     for (size_t k = 1; k + static_cast<size_t>(blend) < n; ++k) {
       const size_t r0 = k + static_cast<size_t>(blend);
       if (blend > 0 && std::min(k, n - r0) < static_cast<size_t>(std::max(1, p.min_blend_part_strips))) continue;
-      const Part l = describe(s, 0, k, cam, ground), r = describe(s, r0, n, cam, ground);
+      const StripRun l = describeRun(s, 0, k, cam, ground), r = describeRun(s, r0, n, cam, ground);
       if (!person(l) || !person(r)) continue;
       const float lo_d = std::min(l.median_d, r.median_d), hi_d = std::max(l.median_d, r.median_d);
       bool between = true;

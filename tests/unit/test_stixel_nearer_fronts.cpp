@@ -10,9 +10,9 @@
 #include <optional>
 
 #include "config.hpp"
-#include "ground_geometry.hpp"
 #include "nearer_fronts.hpp"
 #include "stixel_estimator.hpp"
+#include "stixel_test_stixels.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
@@ -78,19 +78,9 @@ TEST_F(stixelNearerFronts, ANearPartAsTallAsTheRestGetsNone) {
 TEST_F(stixelNearerFronts, ALowNearPartGetsNone) {
   // The function on a group made by hand: four far strips 3.3 m tall at 24 m,
   // four near ones at 21 m, first as tall as a car, then as a bumper.
-  const float slope = static_cast<float>(cam.baseline_m * cam.fx / (cam.fy * 1.65));
-  const GroundModel g = groundModelFromLine(slope, static_cast<float>(-slope * cam.cy), cam, "v_disparity");
+  const GroundModel g = levelRoad(cam);
   ASSERT_TRUE(g.valid);
-  auto stixelAt = [&](int u, double z, double top_m) {
-    Stixel s;
-    s.u = u;
-    s.width = 5;
-    s.disparity = static_cast<float>(cam.disparityFromDepth(z));
-    s.depth_m = static_cast<float>(z);
-    s.bottom_row = static_cast<int>(std::lround(cam.cy + cam.fy * 1.65 / z));
-    s.top_row = static_cast<int>(std::lround(cam.cy + cam.fy * (1.65 - top_m) / z));
-    return s;
-  };
+  auto stixelAt = [&](int u, double z, double top_m) { return stixelOnRoad(cam, u, z, top_m); };
   for (const double near_top : {1.5, 0.9}) {
     std::vector<Stixel> own;
     for (int k = 0; k < 4; ++k) own.push_back(stixelAt(600 + 5 * k, 24.0, 3.3));
