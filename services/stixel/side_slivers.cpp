@@ -56,7 +56,7 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
   };
   int sx0, sx1, hx0, hx1;
   columns(sliver, sx0, sx1), columns(host_group, hx0, hx1);
-  const int touch = std::max(1, p.column_width_px);
+  const int touch = std::max(1, p.column_width_px) * std::max(1, p.max_gap_strips);
   if (sx0 > hx1 + touch || sx1 < hx0 - touch) return kNone;
   const std::vector<const Stixel*> s = nearestPerStrip(sliver);
   const Extent sl = extentOf(s, cam, ground);
@@ -68,25 +68,25 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
       host.median_top_m < p.min_host_height_m || host.median_top_m > p.max_host_height_m)
     return kNone;
   // Beside the host towards the principal point, sticking out beyond its
-  // edge and touching it (at most one empty strip between).
-  const int cw = std::max(1, p.column_width_px);
+  // edge and touching it (at most max_gap_strips empty strips between).
   const double centre = 0.5 * (sl.x0 + sl.x1);
   const bool right = sl.x1 > host.x1 && sl.x0 > host.x0;
   const bool left = sl.x0 < host.x0 && sl.x1 < host.x1;
   if (!right && !left) return kNone;
-  if (right && (centre > cam.cx || sl.x0 > host.x1 + cw)) return kNone;
-  if (left && (centre < cam.cx || sl.x1 < host.x0 - cw)) return kNone;
-  // Farther than the host's facing stixel, within a vehicle's length of its nearest one.
+  if (right && (centre > cam.cx || sl.x0 > host.x1 + touch)) return kNone;
+  if (left && (centre < cam.cx || sl.x1 < host.x0 - touch)) return kNone;
+  // Farther than the host's facing stixel, within a vehicle's length of its
+  // nearest one (the length from the taller of the facing strip and the host).
   const Stixel& facing = right ? *h.back() : *h.front();
   const float facing_height_m = static_cast<float>((facing.bottom_row - facing.top_row + 1) * facing.depth_m / cam.fy);
-  if (sl.near_m <= facing.depth_m ||
-      sl.far_m - host.near_m > std::max(p.max_depth_m, p.length_per_height * facing_height_m))
-    return kNone;
+  const float length_m = p.length_per_height * std::max(facing_height_m, host.visible_m);
+  if (sl.near_m <= facing.depth_m || sl.far_m - host.near_m > std::max(p.max_depth_m, length_m)) return kNone;
   // Not taller than the vehicle (a road user beside it is): than its roof
   // line or the facing strip it continues, whichever is higher (a van's side
   // is as tall as its rear corner, which may stand above the median of lower strips).
   const float roof_m = std::max(host.median_top_m, topHeightOverRoad(facing, cam, ground));
-  if (sl.top_m > roof_m + p.top_tolerance_m) return kNone;
+  const bool tall_host = p.tall_host_m > 0 && host.median_top_m >= p.tall_host_m;
+  if (sl.top_m > roof_m + (tall_host ? p.tall_top_tolerance_m : p.top_tolerance_m)) return kNone;
   return sl.visible_m >= p.min_fold_share * host.visible_m ? SliverAction::kFold : SliverAction::kDrop;
 }
 

@@ -1,8 +1,8 @@
 // Slivers of a vehicle's receding side (side_slivers.hpp): the last strips of
 // a van's side, flat in depth 1.8 m behind the side's ramp, fold into the van's
-// box; a low piece beside it is dropped; a pedestrian beside a car, one on the
-// car's outward side and a separate car farther behind stay boxes of their
-// own; the keys.
+// box; a low piece beside it is dropped; a truck's far side two empty strips
+// away folds into the truck's box; a pedestrian beside a car, one on the car's
+// outward side and a separate car farther behind stay boxes of their own; the keys.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -44,6 +44,9 @@ GroupingParams defaults() {
   p.side_slivers.max_host_height_m = d.side_sliver_max_host_height_m;
   p.side_slivers.top_tolerance_m = d.side_sliver_top_tolerance_m;
   p.side_slivers.min_fold_share = d.side_sliver_min_fold_share;
+  p.side_slivers.max_gap_strips = d.side_sliver_max_gap_strips;
+  p.side_slivers.tall_host_m = d.side_sliver_tall_host_m;
+  p.side_slivers.tall_top_tolerance_m = d.side_sliver_tall_top_tolerance_m;
   return p;
 }
 
@@ -90,6 +93,55 @@ TEST(stixelSideSlivers, ATrucksFourStripSideFoldsIntoItsBox) {
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0].box.x, 665);
   EXPECT_EQ(one[0].box.x + one[0].box.w, 775);
+}
+
+// highway seed 31 frame 10: a truck right of the image centre, its rear at
+// 22.1-22.7 m (u 690-770, 3.5 m), its edge strip u 685 at 23.4 m only 1.8 m tall
+// (the rear's edge blends with the side), u 675-680 empty, then the side's far
+// end at 29.4-31.6 m (u 660-670) reading 3.75 m over the road. Three tests keep
+// it apart before: the gap of two strips, the length bound from the 1.8 m edge
+// strip (max(6, 3 x 1.8) < 31.6 - 22.1) and the top 0.2 m above the rear's.
+std::vector<Stixel> truckWithFarSide(const StereoCamera& cam, float side_m) {
+  std::vector<Stixel> st;
+  const float side[] = {31.6f, 30.5f, 29.4f};
+  for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, 660 + 5 * k, side[k], side_m));
+  st.push_back(stixelAt(cam, 685, 23.4f, 1.8f));
+  for (int k = 0; k < 17; ++k) st.push_back(stixelAt(cam, 690 + 5 * k, 22.1f + 0.03f * (k % 3), 3.55f));
+  return st;
+}
+
+TEST(stixelSideSlivers, ATrucksFarSideBeyondAGapFoldsIntoItsBox) {
+  const StereoCamera cam = kittiLikeCamera();
+  const std::vector<Stixel> st = truckWithFarSide(cam, 3.75f);
+  const auto one = groupStixels(st, cam, defaults());
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].box.x, 660) << "the truck's box takes its side's columns";
+  EXPECT_EQ(one[0].box.x + one[0].box.w, 775);
+
+  GroupingParams adjacent = defaults();
+  adjacent.side_slivers.max_gap_strips = 1;
+  EXPECT_EQ(groupStixels(st, cam, adjacent).size(), 2u) << "one empty strip at most: the side stays apart";
+  GroupingParams strict_top = defaults();
+  strict_top.side_slivers.tall_host_m = 0;
+  EXPECT_EQ(groupStixels(st, cam, strict_top).size(), 2u) << "0.2 m above the rear: over the 0.15 m margin";
+  // The same side 0.7 m above the truck is something else (a sign, a tree).
+  EXPECT_EQ(groupStixels(truckWithFarSide(cam, 4.25f), cam, defaults()).size(), 2u);
+}
+
+TEST(stixelSideSlivers, ACarsLengthBoundStaysACarsLength) {
+  // The same geometry beside a 1.5 m car: 9.5 m behind its rear is beyond
+  // max(6, 3 x 1.5), the next car of a row, apart; a truck's 3.55 m allows 10.6 m.
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st;
+  const float side[] = {31.6f, 30.5f, 29.4f};
+  for (int k = 0; k < 3; ++k) st.push_back(stixelAt(cam, 660 + 5 * k, side[k], 1.4f));
+  for (int k = 0; k < 12; ++k) st.push_back(stixelAt(cam, 685 + 5 * k, 22.1f, 1.5f));
+  EXPECT_EQ(groupStixels(st, cam, defaults()).size(), 2u);
+  for (Stixel& x : st)
+    if (x.u >= 685) x = stixelAt(cam, x.u, x.depth_m, 3.55f);
+  for (Stixel& x : st)
+    if (x.u < 685) x = stixelAt(cam, x.u, x.depth_m, 3.4f);
+  EXPECT_EQ(groupStixels(st, cam, defaults()).size(), 1u) << "a truck's length";
 }
 
 TEST(stixelSideSlivers, RoadUsersAndCarsBesideACarKeepTheirBoxes) {
@@ -147,8 +199,10 @@ TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
                        {"side_sliver_min_host_height_m", &Params::side_sliver_min_host_height_m},
                        {"side_sliver_max_host_height_m", &Params::side_sliver_max_host_height_m},
                        {"side_sliver_top_tolerance_m", &Params::side_sliver_top_tolerance_m},
-                       {"side_sliver_min_fold_share", &Params::side_sliver_min_fold_share}},
-                      {0.8, 1.5, 1.1, 4.0, 0.15, 0.4});
+                       {"side_sliver_min_fold_share", &Params::side_sliver_min_fold_share},
+                       {"side_sliver_tall_host_m", &Params::side_sliver_tall_host_m},
+                       {"side_sliver_tall_top_tolerance_m", &Params::side_sliver_tall_top_tolerance_m}},
+                      {0.8, 1.5, 1.1, 4.0, 0.15, 0.4, 3.0, 0.3});
   YAML::Node n;
   n["side_sliver_max_stixels"] = 0;
   ConfigSection c(n, "stixel");
@@ -157,6 +211,13 @@ TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
   expectRejected("side_sliver_max_stixels", 101);
   expectRejected("side_sliver_min_fold_share", 1.5);
   EXPECT_EQ(Params{}.side_sliver_max_stixels, 4);
+  YAML::Node g;
+  g["side_sliver_max_gap_strips"] = 3;
+  ConfigSection cg(g, "stixel");
+  EXPECT_EQ(readParams(cg).side_sliver_max_gap_strips, 3);
+  expectRejected("side_sliver_max_gap_strips", 0);
+  expectRejected("side_sliver_tall_top_tolerance_m", 6.0);
+  EXPECT_EQ(Params{}.side_sliver_max_gap_strips, 2);
 }
 
 }  // namespace
