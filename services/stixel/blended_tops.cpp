@@ -5,16 +5,14 @@
 
 #include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
+#include "group_disparity.hpp"
 
 namespace nerv::stixel {
 
 int raiseBlendedTop(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& g,
                     const std::vector<const Stixel*>& group, const BlendedTopParams& p, PixelBox& box) {
   if (p.max_extension_m <= 0.0f || group.empty() || !g.valid) return 0;
-  std::vector<float> ds;
-  for (const Stixel* s : group) ds.push_back(s->disparity);
-  std::nth_element(ds.begin(), ds.begin() + ds.size() / 2, ds.end());
-  const float d = ds[ds.size() / 2];
+  const float d = medianDisparity(group);
   if (!(d > 0.0f)) return 0;
   const double z = cam.depthFromDisparity(d);
   const int w = box.x1 - box.x0;

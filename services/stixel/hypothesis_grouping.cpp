@@ -560,6 +560,7 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
       refineBox(*input.disparity, cam, *input.ground, g, p.column_width_px, p.refinement, box,
                 p.tower_edges_above_surround ? surround : kNoSurround, group_min_x, group_max_x);
       widenPostSides(*input.disparity, cam, *input.ground, g, p.post_sides, box);
+      raiseToHolePlate(*input.disparity, cam, *input.ground, g, p.hole_plates, box);
       extendOverOccluders(*input.disparity, cam, *input.ground, g, p.occluded_sides, box, group_min_x, group_max_x);
       raiseBlendedTop(*input.disparity, cam, *input.ground, g, p.blended_top, box);
       box.x0 = std::max(box.x0, group_min_x);

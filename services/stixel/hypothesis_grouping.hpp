@@ -17,6 +17,7 @@
 #include "person_pairs.hpp"
 #include "occluded_sides.hpp"
 #include "overhang_cut.hpp"
+#include "hole_plates.hpp"
 #include "post_sides.hpp"
 #include "roof_pieces.hpp"
 #include "side_slivers.hpp"
@@ -63,6 +64,7 @@ struct GroupingParams {
   bool refine_boxes = true;            // pixel-accurate box edges (box_refinement.hpp)
   BoxRefinementParams refinement;
   PostSidesParams post_sides;          // sides of posts widened across matcher holes (post_sides.hpp)
+  HolePlateParams hole_plates;         // a post's box raised over the hole of its plate (hole_plates.hpp)
   OccludedSideParams occluded_sides;  // box sides continued over a nearer occluder (occluded_sides.hpp)
   int column_width_px = 5;             // stixel strip width (refinement looks one strip outside)
 };

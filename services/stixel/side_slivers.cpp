@@ -56,8 +56,9 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
   };
   int sx0, sx1, hx0, hx1;
   columns(sliver, sx0, sx1), columns(host_group, hx0, hx1);
-  const int touch = std::max(1, p.column_width_px) * std::max(1, p.max_gap_strips);
-  if (sx0 > hx1 + touch || sx1 < hx0 - touch) return kNone;
+  const int cw = std::max(1, p.column_width_px);
+  const int reach = cw * std::max(1, std::max(1, p.tall_max_gap_strips));  // the widest gap allowed below
+  if (sx0 > hx1 + reach || sx1 < hx0 - reach) return kNone;
   const std::vector<const Stixel*> s = nearestPerStrip(sliver);
   const Extent sl = extentOf(s, cam, ground);
   if (sl.strips > static_cast<size_t>(p.max_stixels) || (sl.x1 - sl.x0) * sl.median_m / cam.fx > p.max_width_m)
@@ -68,7 +69,10 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
       host.median_top_m < p.min_host_height_m || host.median_top_m > p.max_host_height_m)
     return kNone;
   // Beside the host towards the principal point, sticking out beyond its
-  // edge and touching it (at most max_gap_strips empty strips between).
+  // edge and touching it (at most one empty strip between, or
+  // tall_max_gap_strips beside a tall host).
+  const bool tall_host = p.tall_host_m > 0 && host.median_top_m >= p.tall_host_m;
+  const int touch = cw * (tall_host ? std::max(1, p.tall_max_gap_strips) : 1);
   const double centre = 0.5 * (sl.x0 + sl.x1);
   const bool right = sl.x1 > host.x1 && sl.x0 > host.x0;
   const bool left = sl.x0 < host.x0 && sl.x1 < host.x1;
@@ -85,7 +89,6 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
   // line or the facing strip it continues, whichever is higher (a van's side
   // is as tall as its rear corner, which may stand above the median of lower strips).
   const float roof_m = std::max(host.median_top_m, topHeightOverRoad(facing, cam, ground));
-  const bool tall_host = p.tall_host_m > 0 && host.median_top_m >= p.tall_host_m;
   if (sl.top_m > roof_m + (tall_host ? p.tall_top_tolerance_m : p.top_tolerance_m)) return kNone;
   return sl.visible_m >= p.min_fold_share * host.visible_m ? SliverAction::kFold : SliverAction::kDrop;
 }

@@ -16,11 +16,9 @@
 //    min_host_height_m to max_host_height_m over the road (a vehicle, not a
 //    hedge or a facade);
 //  - it lies towards the principal point from the vehicle, sticks out beyond
-//    the vehicle's edge there and touches it, at most max_gap_strips empty
-//    strips between (a side projects towards the vanishing point as it
-//    recedes; a "sliver" on the outward side is another object; highway seed
-//    31 frame 10: a truck's side at 29-32 m two empty strips left of its rear
-//    at 22 m, where the side's first metres blend with the rear's edge);
+//    the vehicle's edge there and touches it, at most one empty strip
+//    between (a side projects towards the vanishing point as it recedes; a
+//    "sliver" on the outward side is another object);
 //  - it is farther than the vehicle's facing stixel, and its far end at most
 //    max(max_depth_m, length_per_height x h) behind the vehicle's nearest
 //    stixel, h the larger of the facing stixel's height and the vehicle's
@@ -32,11 +30,14 @@
 //    car (the rule height_steps.hpp cuts them by), a side is not taller than
 //    its own vehicle (wet_road seed 5 frame 19: the van's median top 2.15 m,
 //    lowered by its low left strips, its rear corner 2.25 m, the sliver 2.26 m).
-//    Beside a vehicle whose median top stands at least tall_host_m (a truck
-//    or a bus: taller than any road user) the margin is tall_top_tolerance_m:
-//    the far end of a truck's side, read at its strips' median depth on a
-//    ramp, stood 3.75 m over the road beside the rear's 3.51 m (truth 3.54 m,
-//    highway seed 31 frame 10).
+//  Beside a vehicle whose median top stands at least tall_host_m (a truck or
+//  a bus: taller than any road user) the top margin is tall_top_tolerance_m
+//  and up to tall_max_gap_strips empty strips may lie between: highway seed 31
+//  frame 10, a truck's side at 29-32 m two empty strips left of its rear at
+//  22 m (the side's first metres blend with the rear's edge), its far end,
+//  read at its strips' median depth on a ramp, 3.75 m over the road beside
+//  the rear's 3.51 m (truth 3.54 m). Beside a 2.1 m van, two strips folded a
+//  cyclist 5.6 m behind it (urban seed 13 frame 15, rendered disparity).
 // A sliver at least min_fold_share of the vehicle's visible height is its
 // side and widens its box (highway seed 23: the cars' boxes ended 8-14 px
 // short of their labels); a lower one is the matcher's smear beside the
@@ -62,7 +63,7 @@ struct SideSliverParams {
   float top_tolerance_m = 0.1f;    // ... and no higher over the road than its median or facing top + this [m] is its sliver
   float tall_host_m = 0.0f;        // beside a vehicle whose median top reaches this [m] (0 = none) ...
   float tall_top_tolerance_m = 0.5f; // ... the top may stand this much higher instead [m]
-  int max_gap_strips = 1;          // at most this many empty strips between the sliver and the vehicle
+  int tall_max_gap_strips = 2;     // ... and at most this many empty strips may lie between (else one)
   float min_fold_share = 0.5f;     // a sliver this share of the vehicle's visible height folds into it, a lower one is dropped
   int column_width_px = 5;         // stixel strip width
 };

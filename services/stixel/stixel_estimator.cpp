@@ -258,7 +258,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.side_slivers.max_host_height_m = params.side_sliver_max_host_height_m;
   gp.side_slivers.top_tolerance_m = params.side_sliver_top_tolerance_m;
   gp.side_slivers.min_fold_share = params.side_sliver_min_fold_share;
-  gp.side_slivers.max_gap_strips = params.side_sliver_max_gap_strips;
+  gp.side_slivers.tall_max_gap_strips = params.side_sliver_tall_max_gap_strips;
   gp.side_slivers.tall_host_m = params.side_sliver_tall_host_m;
   gp.side_slivers.tall_top_tolerance_m = params.side_sliver_tall_top_tolerance_m;
   gp.side_slivers.max_depth_m = params.side_max_depth_m;
@@ -298,6 +298,13 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.post_sides.max_gap_m = params.post_sides_max_gap_m;
   gp.post_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.post_sides.ground_tolerance_m = params.ground_tolerance_m;
+  gp.hole_plates.max_width_m = params.hole_plate_max_width_m;
+  gp.hole_plates.min_top_m = params.hole_plate_min_top_m;
+  gp.hole_plates.min_plate_height_m = params.hole_plate_min_height_m;
+  gp.hole_plates.max_plate_height_m = params.hole_plate_max_height_m;
+  gp.hole_plates.max_plate_width_m = params.hole_plate_max_hole_width_m;
+  gp.hole_plates.min_hole_share = params.hole_plate_min_share;
+  gp.hole_plates.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.occluded_sides.max_extension_m = params.occluded_side_max_extension_m;
   gp.occluded_sides.min_width_m = params.occluded_side_min_width_m;
   gp.occluded_sides.max_height_m = params.occluded_side_max_height_m;

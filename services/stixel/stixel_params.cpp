@@ -108,7 +108,7 @@ Params readParams(ConfigSection& c) {
   c.get("side_sliver_max_host_height_m", p.side_sliver_max_host_height_m, 0.0, 20.0);
   c.get("side_sliver_top_tolerance_m", p.side_sliver_top_tolerance_m, 0.0, 5.0);
   c.get("side_sliver_min_fold_share", p.side_sliver_min_fold_share, 0.0, 1.0);
-  c.get("side_sliver_max_gap_strips", p.side_sliver_max_gap_strips, 1, 10);
+  c.get("side_sliver_tall_max_gap_strips", p.side_sliver_tall_max_gap_strips, 1, 10);
   c.get("side_sliver_tall_host_m", p.side_sliver_tall_host_m, 0.0, 20.0);
   c.get("side_sliver_tall_top_tolerance_m", p.side_sliver_tall_top_tolerance_m, 0.0, 5.0);
   c.get("roof_piece_max_stixels", p.roof_piece_max_stixels, 0, 100);
@@ -153,6 +153,12 @@ Params readParams(ConfigSection& c) {
   c.get("post_sides_min_run_m", p.post_sides_min_run_m, 0.01, 10.0);
   c.get("post_sides_max_extension_m", p.post_sides_max_extension_m, 0.0, 10.0);
   c.get("post_sides_max_gap_m", p.post_sides_max_gap_m, 0.0, 10.0);
+  c.get("hole_plate_max_width_m", p.hole_plate_max_width_m, 0.0, 10.0);
+  c.get("hole_plate_min_top_m", p.hole_plate_min_top_m, 0.0, 20.0);
+  c.get("hole_plate_min_height_m", p.hole_plate_min_height_m, 0.0, 10.0);
+  c.get("hole_plate_max_height_m", p.hole_plate_max_height_m, 0.0, 10.0);
+  c.get("hole_plate_max_hole_width_m", p.hole_plate_max_hole_width_m, 0.0, 10.0);
+  c.get("hole_plate_min_share", p.hole_plate_min_share, 0.0, 1.0);
   c.get("occluded_side_max_extension_m", p.occluded_side_max_extension_m, 0.0, 10.0);
   c.get("occluded_side_min_width_m", p.occluded_side_min_width_m, 0.0, 10.0);
   c.get("occluded_side_max_height_m", p.occluded_side_max_height_m, 0.0, 100.0);

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "ground_geometry.hpp"
 #include "perception_types.hpp"
@@ -37,6 +39,13 @@ inline Stixel stixelOnRoad(const StereoCamera& cam, int u, double z, double top_
   s.bottom_row = static_cast<int>(std::lround(cam.cy + cam.fy * camera_height_m / z));
   s.top_row = static_cast<int>(std::lround(cam.cy + cam.fy * (camera_height_m - top_m) / z));
   return s;
+}
+
+// The post's hypothesis (a box taller than min_height_m within 1 m of depth z), if any.
+inline std::optional<Hypothesis> postAt(const std::vector<Hypothesis>& hs, float z, float min_height_m = 2.0f) {
+  for (const Hypothesis& h : hs)
+    if (std::abs(h.z_m - z) < 1.0f && h.height_m > min_height_m) return h;
+  return std::nullopt;
 }
 
 }  // namespace nerv::stixel

@@ -15,17 +15,11 @@
 #include <vector>
 
 #include "stixel_estimator.hpp"
+#include "stixel_test_stixels.hpp"
 #include "synthetic_road_scene.hpp"
 
 namespace nerv::stixel {
 namespace {
-
-// The post's hypothesis (a box taller than min_height_m at depth z), if any.
-std::optional<Hypothesis> postAt(const std::vector<Hypothesis>& hs, float z, float min_height_m = 2.0f) {
-  for (const Hypothesis& h : hs)
-    if (std::abs(h.z_m - z) < 1.0f && h.height_m > min_height_m) return h;
-  return std::nullopt;
-}
 
 // A flat road seen by the KITTI-like camera; each test paints its posts.
 class stixelPostSides : public ::testing::Test {

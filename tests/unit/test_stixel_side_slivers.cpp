@@ -44,7 +44,7 @@ GroupingParams defaults() {
   p.side_slivers.max_host_height_m = d.side_sliver_max_host_height_m;
   p.side_slivers.top_tolerance_m = d.side_sliver_top_tolerance_m;
   p.side_slivers.min_fold_share = d.side_sliver_min_fold_share;
-  p.side_slivers.max_gap_strips = d.side_sliver_max_gap_strips;
+  p.side_slivers.tall_max_gap_strips = d.side_sliver_tall_max_gap_strips;
   p.side_slivers.tall_host_m = d.side_sliver_tall_host_m;
   p.side_slivers.tall_top_tolerance_m = d.side_sliver_tall_top_tolerance_m;
   return p;
@@ -119,13 +119,27 @@ TEST(stixelSideSlivers, ATrucksFarSideBeyondAGapFoldsIntoItsBox) {
   EXPECT_EQ(one[0].box.x + one[0].box.w, 775);
 
   GroupingParams adjacent = defaults();
-  adjacent.side_slivers.max_gap_strips = 1;
+  adjacent.side_slivers.tall_max_gap_strips = 1;
   EXPECT_EQ(groupStixels(st, cam, adjacent).size(), 2u) << "one empty strip at most: the side stays apart";
   GroupingParams strict_top = defaults();
   strict_top.side_slivers.tall_host_m = 0;
   EXPECT_EQ(groupStixels(st, cam, strict_top).size(), 2u) << "0.2 m above the rear: over the 0.15 m margin";
   // The same side 0.7 m above the truck is something else (a sign, a tree).
   EXPECT_EQ(groupStixels(truckWithFarSide(cam, 4.25f), cam, defaults()).size(), 2u);
+}
+
+TEST(stixelSideSlivers, ARoadUserTwoStripsBesideAVanStaysApart) {
+  // urban seed 13 frame 15 (rendered disparity): a cyclist at 30.1 m (1.75 m,
+  // u 665-675) two empty strips left of a 2.1 m van at 24.5 m (u 685-760). Lower
+  // than the van and within its length, but a van is no tall host: one strip at most.
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st;
+  for (int k = 0; k < 2; ++k) st.push_back(stixelAt(cam, 665 + 5 * k, 30.1f, 1.75f));
+  for (int k = 0; k < 15; ++k) st.push_back(stixelAt(cam, 685 + 5 * k, 24.5f, 2.07f));
+  EXPECT_EQ(groupStixels(st, cam, defaults()).size(), 2u);
+  GroupingParams everyone_tall = defaults();
+  everyone_tall.side_slivers.tall_host_m = 2.0f;
+  EXPECT_EQ(groupStixels(st, cam, everyone_tall).size(), 1u) << "control: as a tall host's, the gap is bridged";
 }
 
 TEST(stixelSideSlivers, ACarsLengthBoundStaysACarsLength) {
@@ -212,12 +226,12 @@ TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
   expectRejected("side_sliver_min_fold_share", 1.5);
   EXPECT_EQ(Params{}.side_sliver_max_stixels, 4);
   YAML::Node g;
-  g["side_sliver_max_gap_strips"] = 3;
+  g["side_sliver_tall_max_gap_strips"] = 3;
   ConfigSection cg(g, "stixel");
-  EXPECT_EQ(readParams(cg).side_sliver_max_gap_strips, 3);
-  expectRejected("side_sliver_max_gap_strips", 0);
+  EXPECT_EQ(readParams(cg).side_sliver_tall_max_gap_strips, 3);
+  expectRejected("side_sliver_tall_max_gap_strips", 0);
   expectRejected("side_sliver_tall_top_tolerance_m", 6.0);
-  EXPECT_EQ(Params{}.side_sliver_max_gap_strips, 2);
+  EXPECT_EQ(Params{}.side_sliver_tall_max_gap_strips, 2);
 }
 
 }  // namespace
