@@ -159,6 +159,12 @@ Params readParams(ConfigSection& c) {
   c.get("hole_plate_max_height_m", p.hole_plate_max_height_m, 0.0, 10.0);
   c.get("hole_plate_max_hole_width_m", p.hole_plate_max_hole_width_m, 0.0, 10.0);
   c.get("hole_plate_min_share", p.hole_plate_min_share, 0.0, 1.0);
+  c.get("occluded_vehicle_width_m", p.occluded_vehicle_width_m, 0.0, 5.0);
+  c.get("occluded_vehicle_min_width_m", p.occluded_vehicle_min_width_m, 0.0, 5.0);
+  c.get("occluded_vehicle_max_width_m", p.occluded_vehicle_max_width_m, 0.0, 5.0);
+  c.get("occluded_vehicle_min_height_m", p.occluded_vehicle_min_height_m, 0.0, 10.0);
+  c.get("occluded_vehicle_max_height_m", p.occluded_vehicle_max_height_m, 0.0, 10.0);
+  c.get("occluded_vehicle_min_step_m", p.occluded_vehicle_min_step_m, 0.0, 100.0);
   c.get("occluded_side_max_extension_m", p.occluded_side_max_extension_m, 0.0, 10.0);
   c.get("occluded_side_min_width_m", p.occluded_side_min_width_m, 0.0, 10.0);
   c.get("occluded_side_max_height_m", p.occluded_side_max_height_m, 0.0, 100.0);
