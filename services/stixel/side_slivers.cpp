@@ -20,6 +20,7 @@ struct Extent {
   float top_m = 0;           // highest stixel top over the road
   float median_top_m = 0;    // median stixel top over the road (a vehicle's roof line)
   float visible_m = 0;       // from the highest stixel top to the lowest foot
+  float top_spread_m = 0;    // interquartile range of the stixel tops over the road (a roof line: small)
   size_t strips = 0;
 };
 
@@ -38,6 +39,8 @@ Extent extentOf(const std::vector<const Stixel*>& s, const StereoCamera& cam, co
   e.top_m = *std::max_element(top.begin(), top.end());
   e.median_m = median(z);
   e.median_top_m = median(top);
+  std::sort(top.begin(), top.end());
+  e.top_spread_m = top[(3 * top.size()) / 4] - top[top.size() / 4];
   e.visible_m = static_cast<float>((bottom_row - top_row + 1) * e.median_m / cam.fy);
   e.strips = s.size();
   return e;
@@ -61,17 +64,21 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
   if (sx0 > hx1 + reach || sx1 < hx0 - reach) return kNone;
   const std::vector<const Stixel*> s = nearestPerStrip(sliver);
   const Extent sl = extentOf(s, cam, ground);
-  if (sl.strips > static_cast<size_t>(p.max_stixels) || (sl.x1 - sl.x0) * sl.median_m / cam.fx > p.max_width_m)
-    return kNone;
   const std::vector<const Stixel*> h = nearestPerStrip(host_group);
   const Extent host = extentOf(h, cam, ground);
+  // A tall host: a truck or a bus, taller than any road user, with a flat
+  // roof line (a tree's crown or a sign's group is ragged).
+  const bool tall_host = p.tall_host_m > 0 && host.median_top_m >= p.tall_host_m &&
+                         host.top_spread_m <= p.tall_max_top_spread_m;
+  const size_t max_strips = static_cast<size_t>(tall_host ? std::max(p.max_stixels, p.tall_max_stixels) : p.max_stixels);
+  const float max_width_m = tall_host ? std::max(p.max_width_m, p.tall_max_width_m) : p.max_width_m;
+  if (sl.strips > max_strips || (sl.x1 - sl.x0) * sl.median_m / cam.fx > max_width_m) return kNone;
   if (host.strips <= sl.strips || (host.x1 - host.x0) * host.median_m / cam.fx < p.min_host_width_m ||
       host.median_top_m < p.min_host_height_m || host.median_top_m > p.max_host_height_m)
     return kNone;
   // Beside the host towards the principal point, sticking out beyond its
   // edge and touching it (at most one empty strip between, or
   // tall_max_gap_strips beside a tall host).
-  const bool tall_host = p.tall_host_m > 0 && host.median_top_m >= p.tall_host_m;
   const int touch = cw * (tall_host ? std::max(1, p.tall_max_gap_strips) : 1);
   const double centre = 0.5 * (sl.x0 + sl.x1);
   const bool right = sl.x1 > host.x1 && sl.x0 > host.x0;

@@ -31,8 +31,13 @@
 //    its own vehicle (wet_road seed 5 frame 19: the van's median top 2.15 m,
 //    lowered by its low left strips, its rear corner 2.25 m, the sliver 2.26 m).
 //  Beside a vehicle whose median top stands at least tall_host_m (a truck or
-//  a bus: taller than any road user) the top margin is tall_top_tolerance_m
-//  and up to tall_max_gap_strips empty strips may lie between: highway seed 31
+//  a bus: taller than any road user) with a flat roof line (its stixel tops'
+//  interquartile range at most tall_max_top_spread_m; a tree or a sign group
+//  is ragged) the top margin is tall_top_tolerance_m, up to
+//  tall_max_gap_strips empty strips may lie between, and the sliver may be
+//  tall_max_stixels strips and tall_max_width_m wide (a truck's side at 25-30 m
+//  spans 5-6 strips and 1.0-1.2 m; beside a 3 m tree group at 43 m those sizes
+//  folded a pedestrian at 32 m, urban seed 13 frame 0, before the flatness test): highway seed 31
 //  frame 10, a truck's side at 29-32 m two empty strips left of its rear at
 //  22 m (the side's first metres blend with the rear's edge), its far end,
 //  read at its strips' median depth on a ramp, 3.75 m over the road beside
@@ -63,7 +68,10 @@ struct SideSliverParams {
   float top_tolerance_m = 0.1f;    // ... and no higher over the road than its median or facing top + this [m] is its sliver
   float tall_host_m = 0.0f;        // beside a vehicle whose median top reaches this [m] (0 = none) ...
   float tall_top_tolerance_m = 0.5f; // ... the top may stand this much higher instead [m]
-  int tall_max_gap_strips = 2;     // ... and at most this many empty strips may lie between (else one)
+  int tall_max_gap_strips = 2;     // ... and at most this many empty strips may lie between (else one) ...
+  int tall_max_stixels = 6;        // ... and the sliver may be this many strips ...
+  float tall_max_width_m = 1.5f;   // ... and this wide [m] ...
+  float tall_max_top_spread_m = 0.4f; // ... when the tall vehicle's tops lie within this (interquartile) [m]
   float min_fold_share = 0.5f;     // a sliver this share of the vehicle's visible height folds into it, a lower one is dropped
   int column_width_px = 5;         // stixel strip width
 };

@@ -260,6 +260,9 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.side_slivers.top_tolerance_m = params.side_sliver_top_tolerance_m;
   gp.side_slivers.min_fold_share = params.side_sliver_min_fold_share;
   gp.side_slivers.tall_max_gap_strips = params.side_sliver_tall_max_gap_strips;
+  gp.side_slivers.tall_max_stixels = params.side_sliver_tall_max_stixels;
+  gp.side_slivers.tall_max_width_m = params.side_sliver_tall_max_width_m;
+  gp.side_slivers.tall_max_top_spread_m = params.side_sliver_tall_max_top_spread_m;
   gp.side_slivers.tall_host_m = params.side_sliver_tall_host_m;
   gp.side_slivers.tall_top_tolerance_m = params.side_sliver_tall_top_tolerance_m;
   gp.side_slivers.max_depth_m = params.side_max_depth_m;

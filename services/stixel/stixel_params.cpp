@@ -109,6 +109,9 @@ Params readParams(ConfigSection& c) {
   c.get("side_sliver_top_tolerance_m", p.side_sliver_top_tolerance_m, 0.0, 5.0);
   c.get("side_sliver_min_fold_share", p.side_sliver_min_fold_share, 0.0, 1.0);
   c.get("side_sliver_tall_max_gap_strips", p.side_sliver_tall_max_gap_strips, 1, 10);
+  c.get("side_sliver_tall_max_stixels", p.side_sliver_tall_max_stixels, 0, 100);
+  c.get("side_sliver_tall_max_width_m", p.side_sliver_tall_max_width_m, 0.0, 10.0);
+  c.get("side_sliver_tall_max_top_spread_m", p.side_sliver_tall_max_top_spread_m, 0.0, 10.0);
   c.get("side_sliver_tall_host_m", p.side_sliver_tall_host_m, 0.0, 20.0);
   c.get("side_sliver_tall_top_tolerance_m", p.side_sliver_tall_top_tolerance_m, 0.0, 5.0);
   c.get("roof_piece_max_stixels", p.roof_piece_max_stixels, 0, 100);

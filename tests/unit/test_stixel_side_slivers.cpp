@@ -45,6 +45,9 @@ GroupingParams defaults() {
   p.side_slivers.top_tolerance_m = d.side_sliver_top_tolerance_m;
   p.side_slivers.min_fold_share = d.side_sliver_min_fold_share;
   p.side_slivers.tall_max_gap_strips = d.side_sliver_tall_max_gap_strips;
+  p.side_slivers.tall_max_stixels = d.side_sliver_tall_max_stixels;
+  p.side_slivers.tall_max_width_m = d.side_sliver_tall_max_width_m;
+  p.side_slivers.tall_max_top_spread_m = d.side_sliver_tall_max_top_spread_m;
   p.side_slivers.tall_host_m = d.side_sliver_tall_host_m;
   p.side_slivers.tall_top_tolerance_m = d.side_sliver_tall_top_tolerance_m;
   return p;
@@ -88,6 +91,7 @@ TEST(stixelSideSlivers, ATrucksFourStripSideFoldsIntoItsBox) {
   for (int k = 0; k < 18; ++k) st.push_back(stixelAt(cam, 685 + 5 * k, 22.0f, 3.75f));
   GroupingParams three = defaults();
   three.side_slivers.max_stixels = 3;
+  three.side_slivers.tall_max_stixels = 3;
   EXPECT_EQ(groupStixels(st, cam, three).size(), 2u) << "three strips at most: the side is a box of its own";
   const auto one = groupStixels(st, cam, defaults());
   ASSERT_EQ(one.size(), 1u);
@@ -126,6 +130,30 @@ TEST(stixelSideSlivers, ATrucksFarSideBeyondAGapFoldsIntoItsBox) {
   EXPECT_EQ(groupStixels(st, cam, strict_top).size(), 2u) << "0.2 m above the rear: over the 0.15 m margin";
   // The same side 0.7 m above the truck is something else (a sign, a tree).
   EXPECT_EQ(groupStixels(truckWithFarSide(cam, 4.25f), cam, defaults()).size(), 2u);
+}
+
+TEST(stixelSideSlivers, ATrucksSixStripSideFoldsButAPedestrianBesideATreeDoesNot) {
+  // highway seed 31: a truck's left side of six strips, 1.2 m at 27-31 m, beside
+  // its flat 3.55 m rear at 22 m.
+  const StereoCamera cam = kittiLikeCamera();
+  std::vector<Stixel> st;
+  for (int k = 0; k < 6; ++k) st.push_back(stixelAt(cam, 655 + 5 * k, 27.4f + 0.05f * (k % 2), 3.5f));
+  for (int k = 0; k < 17; ++k) st.push_back(stixelAt(cam, 685 + 5 * k, 22.1f, 3.55f));
+  ASSERT_EQ(groupStixels(st, cam, defaults()).size(), 1u);
+  GroupingParams small = defaults();
+  small.side_slivers.tall_max_stixels = 4;
+  EXPECT_EQ(groupStixels(st, cam, small).size(), 2u) << "four strips at most: the side stays apart";
+
+  // The same six strips beside a tree's group left of the image centre, 3 m tall at
+  // its median but ragged (tops 2.2-4 m): no tall host, so four strips at most.
+  std::vector<Stixel> tree;
+  const float tops[] = {2.2f, 3.9f, 2.6f, 3.0f, 4.0f, 2.4f, 3.5f, 3.0f, 2.3f};
+  for (int k = 0; k < 9; ++k) tree.push_back(stixelAt(cam, 400 + 5 * k, 30.0f, tops[k]));
+  for (int k = 0; k < 6; ++k) tree.push_back(stixelAt(cam, 445 + 5 * k, 34.0f + 0.05f * (k % 2), 2.5f));
+  EXPECT_EQ(groupStixels(tree, cam, defaults()).size(), 2u);
+  GroupingParams any_top = defaults();
+  any_top.side_slivers.tall_max_top_spread_m = 10.0f;
+  EXPECT_EQ(groupStixels(tree, cam, any_top).size(), 1u) << "control: as a flat truck's, it would fold";
 }
 
 TEST(stixelSideSlivers, ARoadUserTwoStripsBesideAVanStaysApart) {
@@ -215,8 +243,10 @@ TEST(stixelSideSlivers, KeysAreReadAndRangeChecked) {
                        {"side_sliver_top_tolerance_m", &Params::side_sliver_top_tolerance_m},
                        {"side_sliver_min_fold_share", &Params::side_sliver_min_fold_share},
                        {"side_sliver_tall_host_m", &Params::side_sliver_tall_host_m},
-                       {"side_sliver_tall_top_tolerance_m", &Params::side_sliver_tall_top_tolerance_m}},
-                      {0.8, 1.5, 1.1, 4.0, 0.15, 0.4, 3.0, 0.3});
+                       {"side_sliver_tall_top_tolerance_m", &Params::side_sliver_tall_top_tolerance_m},
+                       {"side_sliver_tall_max_width_m", &Params::side_sliver_tall_max_width_m},
+                       {"side_sliver_tall_max_top_spread_m", &Params::side_sliver_tall_max_top_spread_m}},
+                      {0.8, 1.5, 1.1, 4.0, 0.15, 0.4, 3.0, 0.3, 1.2, 0.5});
   YAML::Node n;
   n["side_sliver_max_stixels"] = 0;
   ConfigSection c(n, "stixel");
