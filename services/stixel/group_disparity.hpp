@@ -3,20 +3,19 @@
 // object's depth" (blended_tops, hole_plates) read it.
 #pragma once
 
-#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "perception_types.hpp"
+#include "upper_median.hpp"
 
 namespace nerv::stixel {
 
 inline float medianDisparity(const std::vector<const Stixel*>& group) {
-  if (group.empty()) return 0.0f;
   std::vector<float> ds;
   ds.reserve(group.size());
   for (const Stixel* s : group) ds.push_back(s->disparity);
-  std::nth_element(ds.begin(), ds.begin() + ds.size() / 2, ds.end());
-  return ds[ds.size() / 2];
+  return upperMedian(std::move(ds));
 }
 
 }  // namespace nerv::stixel

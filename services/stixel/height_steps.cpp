@@ -3,17 +3,9 @@
 #include <algorithm>
 
 #include "nearest_per_strip.hpp"
+#include "upper_median.hpp"
 
 namespace nerv::stixel {
-
-namespace {
-
-float median(std::vector<float> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 // From the road line's row at the stixel's disparity, not from its bottom
 // row, which for a stixel seen above an occluder is the occluder's top.
@@ -55,11 +47,11 @@ int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& 
       const float rest_width_m =
           (s[d - 1]->u + s[d - 1]->width - s[c]->u) * s[c]->depth_m / static_cast<float>(cam.fx);
       if (rest_width_m < p.min_rest_width_m) continue;
-      const float end_h = median(std::vector<float>(h.begin() + a, h.begin() + b));
+      const float end_h = upperMedian(std::vector<float>(h.begin() + a, h.begin() + b));
       if (end_h > p.max_height_m) continue;
       const int cut = s[from_left ? k : n - k]->u;
       if (p.min_step_m > 0 && end_h >= p.min_height_m) {
-        const float rest_h = std::max(h[next], median(std::vector<float>(h.begin() + c, h.begin() + d)));
+        const float rest_h = std::max(h[next], upperMedian(std::vector<float>(h.begin() + c, h.begin() + d)));
         // Ties go to the narrower end (a strip more of the vehicle is not the road user).
         if (end_h - rest_h > best || (cut_u < 0 && end_h - rest_h >= best)) best = end_h - rest_h, cut_u = cut;
       }
@@ -70,7 +62,7 @@ int findHeightStep(const std::vector<const Stixel*>& group, const StereoCamera& 
       std::vector<float> ed;
       for (size_t j = a; j < b; ++j) lo = std::min(lo, s[j]->disparity), hi = std::max(hi, s[j]->disparity), ed.push_back(s[j]->disparity);
       if (hi - lo > p.max_end_spread_px) continue;
-      const float end_d = median(ed);
+      const float end_d = upperMedian(ed);
       const size_t next2 = from_left ? k + 1 : n - k - 2;
       const float d1 = s[next]->disparity - end_d, d2 = s[next2]->disparity - end_d;
       // Only an end nearer than the rest: an end farther than its

@@ -6,17 +6,9 @@
 #include "disparity_tolerance.hpp"
 #include "ground_geometry.hpp"
 #include "group_disparity.hpp"
+#include "upper_median.hpp"
 
 namespace nerv::stixel {
-
-namespace {
-
-int median(std::vector<int> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 int raiseToHolePlate(const cv::Mat& disparity, const StereoCamera& cam, const GroundModel& g,
                      const std::vector<const Stixel*>& group, const HolePlateParams& p, PixelBox& box) {
@@ -63,8 +55,8 @@ int raiseToHolePlate(const cv::Mat& disparity, const StereoCamera& cam, const Gr
   if (2 * static_cast<int>(left.size()) < rows) return 0;  // the hole's sides are not bounded in most rows
   const int rose = box.y0 - top;
   box.y0 = top;
-  box.x0 = std::min(box.x0, median(left));
-  box.x1 = std::max(box.x1, median(right));
+  box.x0 = std::min(box.x0, upperMedian(left));
+  box.x1 = std::max(box.x1, upperMedian(right));
   return rose;
 }
 

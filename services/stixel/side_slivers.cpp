@@ -4,15 +4,11 @@
 
 #include "height_steps.hpp"
 #include "nearest_per_strip.hpp"
+#include "upper_median.hpp"
 
 namespace nerv::stixel {
 
 namespace {
-
-float median(std::vector<float> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 struct Extent {
   int x0 = 0, x1 = 0;        // columns [x0, x1)
@@ -37,9 +33,9 @@ Extent extentOf(const std::vector<const Stixel*>& s, const StereoCamera& cam, co
     z.push_back(x->depth_m);
   }
   e.top_m = *std::max_element(top.begin(), top.end());
-  e.median_m = median(z);
-  e.median_top_m = median(top);
+  e.median_m = upperMedian(z);
   std::sort(top.begin(), top.end());
+  e.median_top_m = top[top.size() / 2];
   e.top_spread_m = top[(3 * top.size()) / 4] - top[top.size() / 4];
   e.visible_m = static_cast<float>((bottom_row - top_row + 1) * e.median_m / cam.fy);
   e.strips = s.size();
@@ -60,7 +56,7 @@ SliverAction sliverAction(const std::vector<const Stixel*>& sliver, const std::v
   int sx0, sx1, hx0, hx1;
   columns(sliver, sx0, sx1), columns(host_group, hx0, hx1);
   const int cw = std::max(1, p.column_width_px);
-  const int reach = cw * std::max(1, std::max(1, p.tall_max_gap_strips));  // the widest gap allowed below
+  const int reach = cw * std::max(1, p.tall_max_gap_strips);  // the widest gap allowed below
   if (sx0 > hx1 + reach || sx1 < hx0 - reach) return kNone;
   const std::vector<const Stixel*> s = nearestPerStrip(sliver);
   const Extent sl = extentOf(s, cam, ground);
