@@ -5,6 +5,7 @@
 //       [--config FILE] [--set section.key=value ...] [--cache DIR] [--visible]
 //       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]
 //       [--difficulty easy|moderate|hard] [--true-disparity | --oracle MODE]
+//       [--gray-offset O]
 //
 // Per frame: disparity (the stereo_matcher's library and defaults, cached
 // as 16-bit PNG under --cache, default /tmp/nerv_bench_cache) ->
@@ -38,6 +39,10 @@
 // miss, and for each false positive the label it overlaps most. --overlay DIR
 // writes DIR/<frame>.png (boxes over the left image) and DIR/<frame>_disparity.png
 // (the disparity the stages saw, uint16 in 1/256 px as on the wire, 0 = invalid).
+// --gray-offset O (0 <= O < 1) matches on floor(luma + O) of the color images
+// instead of the decoder's gray (tools/lib/gray_requantize.hpp): inputs within
+// one gray level of it; the spread of a figure over several offsets is its
+// noise band (tools/nerv eval band).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -45,6 +50,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -58,6 +64,7 @@
 #include "config.hpp"
 #include "dataset.hpp"
 #include "detection_eval.hpp"
+#include "gray_requantize.hpp"
 #include "distance_accuracy.hpp"
 #include "kitti_labels.hpp"
 #include "message_convert.hpp"
@@ -82,6 +89,7 @@ struct Options {
   bool visible = false, per_frame = false, quiet = false, dump_stixels = false;
   std::set<std::string> classes;  // --classes: count only these label types (others are ignored both ways)
   std::string oracle;  // "", truth, truth-at-valid, no-near-outliers, no-far-outliers, no-outliers
+  double gray_offset = -1;  // --gray-offset: >= 0 requantizes the color images' luma (gray_requantize.hpp)
 };
 
 [[noreturn]] void usage(const std::string& why) {
@@ -91,7 +99,7 @@ struct Options {
                "       [--config FILE] [--set section.key=value] [--cache DIR] [--visible] [--count-far-detections]\n"
                "       [--extrinsics FILE] [--overlay DIR] [--per-frame] [--stixels] [--quiet]\n"
                "       [--difficulty easy|moderate|hard] [--classes Car,Pedestrian,...]\n"
-               "       [--true-disparity | --oracle MODE]\n");
+               "       [--true-disparity | --oracle MODE] [--gray-offset O]\n");
   std::exit(2);
 }
 
@@ -124,6 +132,13 @@ Options parse(int argc, char** argv) {
     else if (a == "--stixels") o.dump_stixels = true;
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--true-disparity") o.oracle = "truth";
+    else if (a == "--gray-offset") {
+      const std::string v = value();
+      char* end = nullptr;
+      o.gray_offset = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(o.gray_offset >= 0 && o.gray_offset < 1))
+        usage("--gray-offset wants a number in [0, 1), got '" + v + "'");
+    }
     else if (a == "--oracle") {
       o.oracle = value();
       if (o.oracle != "truth" && o.oracle != "truth-at-valid" && o.oracle != "no-near-outliers" &&
@@ -139,6 +154,7 @@ Options parse(int argc, char** argv) {
     } else usage("unknown flag '" + a + "'");
   }
   if (o.data.empty()) usage("--data DIR is required");
+  if (o.gray_offset >= 0 && o.oracle == "truth") usage("--gray-offset changes the matcher's input; --true-disparity uses none");
   if (o.labels.empty() && fs::is_directory(o.data + "/label_2")) o.labels = o.data + "/label_2";
   if (o.extrinsics.empty() && fs::exists(o.data + "/extrinsics.txt")) o.extrinsics = o.data + "/extrinsics.txt";
   return o;
@@ -245,18 +261,31 @@ std::string buildCacheDir(const std::string& root) {
   return dir.string();
 }
 
+// The matcher's input: the decoder's gray, or with gray_offset >= 0 the color
+// image's luma requantized at that offset.
+cv::Mat matcherInput(const std::string& path, double gray_offset) {
+  if (gray_offset < 0) return cv::imread(path, cv::IMREAD_GRAYSCALE);
+  const cv::Mat color = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (color.empty()) return color;
+  if (color.type() != CV_8UC3)
+    throw std::runtime_error("--gray-offset needs 8-bit color images, " + path + " has " +
+                             std::to_string(color.channels()) + " channel(s)");
+  return requantizedGray(color, gray_offset);
+}
+
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
-                    const std::string& cache_dir, double& ms) {
+                    const std::string& cache_dir, double gray_offset, double& ms) {
   std::ostringstream key;
   key << fs::absolute(f.left_path).string() << '|' << fs::last_write_time(f.left_path).time_since_epoch().count()
       << '|' << stereo::describeParams(sp) << "|wire" << kDisparityScale << "|build " << programStamp();
+  if (gray_offset >= 0) key << "|gray-offset " << gray_offset;
   const std::string path = cache_dir + "/" + std::to_string(std::hash<std::string>{}(key.str())) + ".png";
   ms = 0;
   cv::Mat fixed;
   if (fs::exists(path)) fixed = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (fixed.empty() || fixed.type() != CV_16U) {
-    const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_GRAYSCALE);
-    const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_GRAYSCALE);
+    const cv::Mat left = matcherInput(f.left_path, gray_offset);
+    const cv::Mat right = matcherInput(f.right_path, gray_offset);
     if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
     cv::Mat d;
     const auto t0 = std::chrono::steady_clock::now();
@@ -421,8 +450,8 @@ int main(int argc, char** argv) {
       const DatasetFrame& f = ds.frames[fi];
       double t_matcher = 0;
       const cv::Mat disp = o.oracle == "truth" ? trueDisparityOf(f)
-                           : o.oracle.empty() ? disparityOf(f, P.stereo, *matcher, cache_dir, t_matcher)
-                                              : withOracle(disparityOf(f, P.stereo, *matcher, cache_dir, t_matcher),
+                           : o.oracle.empty() ? disparityOf(f, P.stereo, *matcher, cache_dir, o.gray_offset, t_matcher)
+                                              : withOracle(disparityOf(f, P.stereo, *matcher, cache_dir, o.gray_offset, t_matcher),
                                                            trueDisparityOf(f), o.oracle);
       if (t_matcher > 0) ms_matcher.push_back(t_matcher);
 

@@ -8,6 +8,7 @@
 #  - bench_detection --visible ignores hidden objects without --max-distance too;
 #  - --json holds the same figures;
 #  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
+#  - eval band: the same rows on gray requantized at another offset, cached apart;
 #  - bad options end with one line naming them and exit 2.
 # No LCM bus is involved (bench_detection runs the stages in-process).
 source "$(dirname "$0")/lib.sh"
@@ -79,15 +80,48 @@ grep -q "rendered disparity" "$out/sets/urban_13.txt" || fail "--true-disparity 
 grep -q "^disparity: the rendered disparity" "$out/true.txt" || fail "the oracle's table does not say it is one"
 pass "--true-disparity reaches bench_detection"
 
-expect_error() {  # expect_error PATTERN ARGS...
-  local pattern=$1 rc=0
-  shift
-  nerv eval synthetic "$@" --out "$out/sets" >"$out/bad.txt" 2>&1 || rc=$?
-  [[ $rc == 2 ]] || fail "eval synthetic $* exited with $rc, expected 2"
+expect_error() {  # expect_error synthetic|band PATTERN ARGS...
+  local what=$1 pattern=$2 rc=0
+  shift 2
+  nerv eval "$what" "$@" --out "$out/sets" >"$out/bad.txt" 2>&1 || rc=$?
+  [[ $rc == 2 ]] || fail "eval $what $* exited with $rc, expected 2"
   [[ $(wc -l <"$out/bad.txt") == 1 ]] && grep -q "$pattern" "$out/bad.txt" \
-    || fail "eval synthetic $*: expected one line naming '$pattern', got: $(cat "$out/bad.txt")"
+    || fail "eval $what $*: expected one line naming '$pattern', got: $(cat "$out/bad.txt")"
 }
-expect_error "'bogus'" --sets bogus
-expect_error "'0'" --frames 0
-expect_error "'--frobnicate'" --frobnicate
+expect_error synthetic "'bogus'" --sets bogus
+expect_error synthetic "'0'" --frames 0
+expect_error synthetic "'--frobnicate'" --frobnicate
 pass "bad options end with one line and exit 2"
+
+# eval band: the same scores on gray requantized at other offsets. Its decoder
+# column is the table above; each offset's maps are cached apart from the decoder's.
+before=$(find "$out/sets/disparity_cache" -name '*.png' | wc -l)
+nerv eval band --sets heldout --frames 2 --out "$out/sets" --offsets "0.5" >"$out/band.txt" 2>"$out/band.err" \
+  || fail "eval band exited with $?: $(tail -n 3 "$out/band.err")"
+after=$(find "$out/sets/disparity_cache" -name '*.png' | wc -l)
+[[ $((after - before)) == 8 ]] || fail "offset 0.5 should add 8 maps (4 sets x 2 frames), got $((after - before))"
+grep -q "over 2 gray quantizations" "$out/band.txt" || fail "eval band's title: $(head -n 2 "$out/band.txt")"
+for name in urban_13 urban_14 wet_road_9 highway_31; do
+  dec=$(awk -v n="$name" '$1 == n {print $4}' "$out/first.txt")
+  row=$(grep "^$name " "$out/band.txt") || fail "no band row for $name: $(cat "$out/band.txt")"
+  [[ $(awk '{print $2}' <<<"$row") == "$dec" ]] || fail "$name's decoder column differs from eval synthetic's $dec: $row"
+  [[ -s "$out/sets/$name.gray0.5.txt" ]] || fail "no table for $name at offset 0.5"
+  # min <= decoder F1 <= max
+  awk -v d="${dec##*/}" '{split($3, f, "/"); exit !(f[1] <= d + 1e-9 && d <= f[3] + 1e-9)}' <<<"$row" \
+    || fail "$name's decoder F1 lies outside its band: $row"
+done
+want=$("$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --visible --cache "$out/sets/disparity_cache" \
+  --gray-offset 0.5 2>&1 | awk '/^stixel \+ SNV/ {print $NF}')
+got=$(awk '/^stixel \+ SNV/ {print $NF}' "$out/sets/urban_14.gray0.5.txt")
+[[ -n "$want" && "$want" == "$got" ]] || fail "urban_14 at offset 0.5: bench_detection says F1 $want, eval band's table $got"
+pass "eval band scores each set on the decoder's gray and on the requantized one"
+
+expect_error band "'1.5'" --offsets "0.25 1.5"
+expect_error band "'--frobnicate'" --frobnicate
+expect_error synthetic "true-disparity uses none" --gray-offset 0.5 --true-disparity
+expect_error synthetic "'2'" --gray-offset 2
+rc=0
+"$BIN/bench_detection" --data "$out/sets/urban_14_2" --gray-offset nan >"$out/bad.txt" 2>&1 || rc=$?
+[[ $rc == 2 ]] && grep -q "gray-offset wants a number in \[0, 1), got 'nan'" "$out/bad.txt" \
+  || fail "bench_detection --gray-offset nan: exit $rc, $(head -n 1 "$out/bad.txt")"
+pass "bad offsets end with a line naming them and exit 2"
