@@ -8,7 +8,8 @@
 #  - bench_detection --visible ignores hidden objects without --max-distance too;
 #  - --json holds the same figures;
 #  - --true-disparity reaches bench_detection, and both tables say it is the rendered disparity;
-#  - eval band: the same rows on gray requantized at another offset, cached apart;
+#  - eval band: the same rows on gray requantized at another offset, cached apart, and
+#    --compare's paired table;
 #  - bad options end with one line naming them and exit 2.
 # No LCM bus is involved (bench_detection runs the stages in-process).
 source "$(dirname "$0")/lib.sh"
@@ -96,14 +97,14 @@ pass "bad options end with one line and exit 2"
 # eval band: the same scores on gray requantized at other offsets. Its decoder
 # column is the table above; each offset's maps are cached apart from the decoder's.
 before=$(find "$out/sets/disparity_cache" -name '*.png' | wc -l)
-nerv eval band --sets heldout --frames 2 --out "$out/sets" --offsets "0.5" >"$out/band.txt" 2>"$out/band.err" \
-  || fail "eval band exited with $?: $(tail -n 3 "$out/band.err")"
+nerv eval band --sets heldout --frames 2 --out "$out/sets" --offsets "0.5" --compare stixel.max_height_above_ground_m=1.5 \
+  >"$out/band.txt" 2>"$out/band.err" || fail "eval band exited with $?: $(tail -n 3 "$out/band.err")"
 after=$(find "$out/sets/disparity_cache" -name '*.png' | wc -l)
 [[ $((after - before)) == 8 ]] || fail "offset 0.5 should add 8 maps (4 sets x 2 frames), got $((after - before))"
 grep -q "over 2 gray quantizations" "$out/band.txt" || fail "eval band's title: $(head -n 2 "$out/band.txt")"
 for name in urban_13 urban_14 wet_road_9 highway_31; do
   dec=$(awk -v n="$name" '$1 == n {print $4}' "$out/first.txt")
-  row=$(grep "^$name " "$out/band.txt") || fail "no band row for $name: $(cat "$out/band.txt")"
+  row=$(grep -m1 "^$name " "$out/band.txt") || fail "no band row for $name: $(cat "$out/band.txt")"
   [[ $(awk '{print $2}' <<<"$row") == "$dec" ]] || fail "$name's decoder column differs from eval synthetic's $dec: $row"
   [[ -s "$out/sets/$name.gray0.5.txt" ]] || fail "no table for $name at offset 0.5"
   # min <= decoder F1 <= max
@@ -115,6 +116,19 @@ want=$("$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --
 got=$(awk '/^stixel \+ SNV/ {print $NF}' "$out/sets/urban_14.gray0.5.txt")
 [[ -n "$want" && "$want" == "$got" ]] || fail "urban_14 at offset 0.5: bench_detection says F1 $want, eval band's table $got"
 pass "eval band scores each set on the decoder's gray and on the requantized one"
+
+# --compare: a paired row per set, each cell "TP/FP->TP/FP" at one quantization; the
+# "with" side is what bench_detection gives with that key.
+grep -q "^paired, stixel + SNV TP/FP without -> with stixel.max_height_above_ground_m=1.5, per quantization" "$out/band.txt" \
+  || fail "no paired table: $(cat "$out/band.txt")"
+row=$(grep "^urban_14 .*->" "$out/band.txt") || fail "no paired row for urban_14: $(cat "$out/band.txt")"
+[[ $(grep -cE '^[a-z_0-9]+ +[0-9]+/[0-9]+->[0-9]+/[0-9]+ +[0-9]+/[0-9]+->[0-9]+/[0-9]+ +[-+][0-9.]+ +[0-9]+/[0-9]+$' "$out/band.txt") == 4 ]] \
+  || fail "expected 4 paired rows: $(cat "$out/band.txt")"
+with=$("$BIN/bench_detection" --data "$out/sets/urban_14_2" --max-distance 40 --visible --cache "$out/sets/disparity_cache" \
+  --gray-offset 0.5 --set stixel.max_height_above_ground_m=1.5 2>&1 | awk '/^stixel \+ SNV/ {print $(NF-5) "/" $(NF-4)}')
+without=$(awk '/^stixel \+ SNV/ {print $(NF-5) "/" $(NF-4)}' "$out/sets/urban_14.gray0.5.txt")
+[[ $(awk '{print $3}' <<<"$row") == "$without->$with" ]] || fail "urban_14's paired cell at 0.5 should be $without->$with: $row"
+pass "eval band --compare pairs each quantization ($without->$with)"
 
 expect_error band "'1.5'" --offsets "0.25 1.5"
 expect_error band "'--frobnicate'" --frobnicate
