@@ -88,6 +88,18 @@ BlendedTopParams blendedTopParams(const Params& params) {
   return b;
 }
 
+OccludedVehicleParams occludedVehicleParams(const Params& params) {
+  OccludedVehicleParams ov;
+  ov.vehicle_width_m = params.occluded_vehicle_width_m;
+  ov.min_width_m = params.occluded_vehicle_min_width_m;
+  ov.max_width_m = params.occluded_vehicle_max_width_m;
+  ov.min_height_m = params.occluded_vehicle_min_height_m;
+  ov.max_height_m = params.occluded_vehicle_max_height_m;
+  ov.min_depth_step_m = params.occluded_vehicle_min_step_m;
+  ov.touch_px = params.column_width_px;
+  return ov;
+}
+
 RoofPieceParams roofPieceParams(const Params& params) {
   RoofPieceParams r;
   r.max_stixels = params.roof_piece_max_stixels;
@@ -318,15 +330,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.occluded_sides.depth_tolerance_m = params.refine_depth_tolerance_m;
   gp.occluded_sides.ground_tolerance_m = params.ground_tolerance_m;
   result.hypotheses = groupStixels(result.stixels, cam, gp, {&disparity, &result.ground, &posts});
-  OccludedVehicleParams ov;
-  ov.vehicle_width_m = params.occluded_vehicle_width_m;
-  ov.min_width_m = params.occluded_vehicle_min_width_m;
-  ov.max_width_m = params.occluded_vehicle_max_width_m;
-  ov.min_height_m = params.occluded_vehicle_min_height_m;
-  ov.max_height_m = params.occluded_vehicle_max_height_m;
-  ov.min_depth_step_m = params.occluded_vehicle_min_step_m;
-  ov.touch_px = params.column_width_px;
-  widenOccludedVehicles(result.hypotheses, cam, ov);
+  widenOccludedVehicles(result.hypotheses, cam, occludedVehicleParams(params));
   STIXEL_MARK("grouping");
 #ifdef NERV_STIXEL_PROFILE
   std::fprintf(stderr, "\n");

@@ -10,6 +10,7 @@
 #include "blended_tops.hpp"
 #include "observed_free_space.hpp"
 #include "box_refinement.hpp"
+#include "occluded_vehicles.hpp"
 #include "roof_pieces.hpp"
 #include "config.hpp"
 #include "perception_types.hpp"
@@ -201,6 +202,9 @@ BlendedTopParams blendedTopParams(const Params& params);
 
 // The roof pieces' parameters as estimateStixels passes them (roof_pieces.hpp).
 RoofPieceParams roofPieceParams(const Params& params);
+
+// The hidden cars' parameters as estimateStixels passes them (occluded_vehicles.hpp).
+OccludedVehicleParams occludedVehicleParams(const Params& params);
 
 // Camera pose from snv_extrinsic used when the v-disparity fit is weak.
 struct GroundPrior {

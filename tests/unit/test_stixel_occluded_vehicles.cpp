@@ -27,18 +27,7 @@ Hypothesis hyp(int id, int x0, int x1, int y0, int y1, float z, const StereoCame
   return h;
 }
 
-OccludedVehicleParams defaults() {
-  const Params d;
-  OccludedVehicleParams p;
-  p.vehicle_width_m = d.occluded_vehicle_width_m;
-  p.min_width_m = d.occluded_vehicle_min_width_m;
-  p.max_width_m = d.occluded_vehicle_max_width_m;
-  p.min_height_m = d.occluded_vehicle_min_height_m;
-  p.max_height_m = d.occluded_vehicle_max_height_m;
-  p.min_depth_step_m = d.occluded_vehicle_min_step_m;
-  p.touch_px = d.column_width_px;
-  return p;
-}
+OccludedVehicleParams defaults() { return occludedVehicleParams(Params{}); }
 
 // wet_road seed 7 frame 3: a parked car at 31.6 m, box u 673-699 (1.14 m) of
 // its 1.8 m, rows 171-203; the next car of the row 8 m nearer begins at its
