@@ -273,6 +273,21 @@ cv::Mat matcherInput(const std::string& path, double gray_offset) {
   return requantizedGray(color, gray_offset);
 }
 
+// Raw views (a folder with raw_calib.yaml) are rectified as the stereo_matcher service
+// rectifies them on ingest; the labels then refer to the rectified frame.
+Rectifier& rectifier() {
+  static Rectifier r;
+  return r;
+}
+
+cv::Mat rectifiedLeft(const DatasetFrame& f, const cv::Mat& left) {
+  if (!f.raw) return left;
+  const Rectification& r = rectifier().get(*f.raw);
+  cv::Mat out;
+  cv::remap(left, out, r.left_map1, r.left_map2, cv::INTER_LINEAR);
+  return out;
+}
+
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
                     const std::string& cache_dir, double gray_offset, double& ms) {
   std::ostringstream key;
@@ -287,9 +302,11 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
     const cv::Mat left = matcherInput(f.left_path, gray_offset);
     const cv::Mat right = matcherInput(f.right_path, gray_offset);
     if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
-    cv::Mat d;
+    cv::Mat d, left_rect, right_rect;
+    if (f.raw) rectifier().rectify(*f.raw, left, right, left_rect, right_rect);
     const auto t0 = std::chrono::steady_clock::now();
-    m.compute(left, right, d);
+    if (f.raw) m.compute(left_rect, right_rect, d);
+    else m.compute(left, right, d);
     ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     fixed = wireFixed(d);
     fs::create_directories(cache_dir);
@@ -676,7 +693,7 @@ int main(int argc, char** argv) {
       }
 
       if (!o.overlay.empty()) {
-        cv::Mat img = cv::imread(f.left_path, cv::IMREAD_COLOR);
+        cv::Mat img = rectifiedLeft(f, cv::imread(f.left_path, cv::IMREAD_COLOR));
         for (const auto& l : labels) {
           const cv::Scalar col = l.type == "DontCare" ? cv::Scalar(128, 128, 128) : cv::Scalar(255, 0, 0);
           cv::rectangle(img, cv::Point(int(l.x1), int(l.y1)), cv::Point(int(l.x2), int(l.y2)), col, 1);

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "calibration_io.hpp"
+#include "raw_calibration_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -60,12 +61,35 @@ Dataset openDataset(const std::string& dir) {
   try {
     if (fs::is_directory(root / "left") && fs::is_directory(root / "right")) {
       ds.layout = "plain";
-      const fs::path calib = root / "calib.yaml";
-      if (!fs::exists(calib)) throw DatasetError("calibration " + calib.string() + " is missing");
-      const StereoCamera cam = loadPlainCalibration(calib.string());
+      const fs::path calib = root / "calib.yaml", raw_calib = root / "raw_calib.yaml";
+      const bool raw = fs::exists(raw_calib);
+      if (raw && fs::exists(calib))
+        throw DatasetError("data folder " + dir + " has both calib.yaml (rectified views) and " +
+                           "raw_calib.yaml (raw views): keep the one that describes its images");
+      if (!raw && !fs::exists(calib))
+        throw DatasetError("calibration " + calib.string() + " is missing (or raw_calib.yaml for raw views)");
       ds.frames = pairImages(root / "left", root / "right");
+      std::optional<RawStereoCalibration> rig;
+      StereoCamera cam;
+      if (raw) {
+        int width = 0, height = 0;
+        imageSize(ds.frames.front().left_path, width, height);
+        rig = loadOpenCvStereoCalibration(raw_calib.string(), width, height);
+        if (rig->width != width || rig->height != height)
+          throw DatasetError("calibration " + raw_calib.string() + " is for " + std::to_string(rig->width) +
+                             "x" + std::to_string(rig->height) + " images, " + ds.frames.front().left_path +
+                             " is " + std::to_string(width) + "x" + std::to_string(height));
+        try {
+          cam = computeRectification(*rig).camera;
+        } catch (const std::invalid_argument& e) {
+          throw DatasetError("calibration " + raw_calib.string() + " cannot rectify: " + e.what());
+        }
+      } else {
+        cam = loadPlainCalibration(calib.string());
+      }
       for (auto& f : ds.frames) {
         f.camera = cam;
+        f.raw = rig;
         f.label_path = optionalFile(root / "label_2", f.name, ".txt");
         f.disp_gt_path = optionalFile(root / "disp_gt", f.name, ".png");
       }

@@ -93,6 +93,20 @@ stereo_calibration_t toCalibration(const StereoCamera& cam) {
   return c;
 }
 
+stereo_calibration_t toCalibration(const RawStereoCalibration& raw, const StereoCamera& rectified) {
+  stereo_calibration_t c = toCalibration(rectified);
+  c.rectified = false;
+  c.width = raw.width;
+  c.height = raw.height;
+  std::copy(raw.left_K.begin(), raw.left_K.end(), c.left_K);
+  std::copy(raw.left_D.begin(), raw.left_D.end(), c.left_D);
+  std::copy(raw.right_K.begin(), raw.right_K.end(), c.right_K);
+  std::copy(raw.right_D.begin(), raw.right_D.end(), c.right_D);
+  std::copy(raw.R.begin(), raw.R.end(), c.R);
+  std::copy(raw.T.begin(), raw.T.end(), c.T);
+  return c;
+}
+
 RawStereoCalibration toRawCalibration(const stereo_calibration_t& c) {
   RawStereoCalibration raw;
   raw.width = c.width;

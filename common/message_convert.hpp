@@ -22,6 +22,9 @@ StereoCamera toCamera(const stereo_calibration_t& calib);
 stereo_calibration_t toCalibration(const StereoCamera& cam);
 // The raw block (rectified = false) of a calibration message.
 RawStereoCalibration toRawCalibration(const stereo_calibration_t& calib);
+// A raw pair's calibration message: rectified = false, the raw block from `raw`, and the
+// first block from `rectified` (the camera the receiver's rectification gives).
+stereo_calibration_t toCalibration(const RawStereoCalibration& raw, const StereoCamera& rectified);
 
 // Images: "gray8" | "bgr8" raw, or "png" | "jpeg" compressed.
 image_t encodeImage(const cv::Mat& image, const std::string& encoding, int jpeg_quality = 95);

@@ -64,3 +64,16 @@ synthetic_sequence() {  # synthetic_sequence SCENE FRAMES -> prints the folder
 no_survivors() {  # no process of this build left running
   ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "lcm-logger --lcm-url=$URL" >/dev/null
 }
+
+# best_kept_iou FILE X1 Y1 X2 Y2: the best IoU of a kept detection in FILE (DETECTIONS as
+# nerv_export --json writes them) with the box X1,Y1-X2,Y2; printed with two decimals.
+best_kept_iou() {
+  grep -o '{"roi_id":[^}]*}' "$1" | grep '"kept":true' | awk -F'[:,]' -v lx1="$2" -v ly1="$3" -v lx2="$4" -v ly2="$5" '
+    { for (i = 1; i < NF; i++) v[$i] = $(i + 1);
+      x1 = v["\"x\""]; y1 = v["\"y\""]; x2 = x1 + v["\"w\""]; y2 = y1 + v["\"h\""];
+      ix = (x2 < lx2 ? x2 : lx2) - (x1 > lx1 ? x1 : lx1); iy = (y2 < ly2 ? y2 : ly2) - (y1 > ly1 ? y1 : ly1);
+      inter = (ix > 0 && iy > 0) ? ix * iy : 0;
+      iou = inter / ((x2 - x1) * (y2 - y1) + (lx2 - lx1) * (ly2 - ly1) - inter);
+      if (iou > best) best = iou }
+    END { printf "%.2f", best }'
+}

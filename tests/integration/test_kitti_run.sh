@@ -23,14 +23,7 @@ pass "camera height within 0.3 m of 1.65 m on every frame: $(echo $heights)"
 
 "$BIN/nerv_export" "$out/nerv.lcmlog" --json --no-blobs | grep '"channel":"DETECTIONS"' \
   | grep '"header":{"seq":0,' >"$out/det0.json" || fail "no DETECTIONS for frame 0"
-best=$(grep -o '{"roi_id":[^}]*}' "$out/det0.json" | grep '"kept":true' | awk -F'[:,]' '
-  { for (i = 1; i < NF; i++) v[$i] = $(i + 1);
-    x1 = v["\"x\""]; y1 = v["\"y\""]; x2 = x1 + v["\"w\""]; y2 = y1 + v["\"h\""];
-    ix = (x2 < 681 ? x2 : 681) - (x1 > 605 ? x1 : 605); iy = (y2 < 234 ? y2 : 234) - (y1 > 176 ? y1 : 176);
-    inter = (ix > 0 && iy > 0) ? ix * iy : 0;
-    iou = inter / ((x2 - x1) * (y2 - y1) + 76 * 58 - inter);
-    if (iou > best) best = iou }
-  END { printf "%.2f", best }')
+best=$(best_kept_iou "$out/det0.json" 605 176 681 234)
 awk -v b="$best" 'BEGIN { exit !(b > 0.5) }' || fail "best IoU of a kept detection with the car ahead is $best"
 pass "car ahead detected, IoU $best"
 echo "1 passed, 0 failed"

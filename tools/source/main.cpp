@@ -6,7 +6,8 @@
 //
 // --rate 0 publishes as fast as the pipeline takes frames: at most K frames
 // without DETECTIONS at any time. After the last frame it waits for every
-// frame's DETECTIONS; exit 0 when all arrived, 3 when some did not.
+// frame's DETECTIONS; exit 0 when all arrived, 3 when some did not. A folder with
+// raw_calib.yaml holds raw views: they go out unrectified with the rig's calibration.
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -93,7 +94,9 @@ stereo_frame_t makeFrame(const Dataset& ds, const DatasetFrame& f, const std::st
   if (right.empty()) throw std::runtime_error("image " + f.right_path + " cannot be read");
   stereo_frame_t msg;
   msg.header.frame_id = std::filesystem::path(ds.root).filename().string() + "/" + f.name;
-  msg.calib = toCalibration(f.camera);
+  // Raw views (raw_calib.yaml) go out as they are, with the rig's calibration: the
+  // stereo_matcher rectifies them on ingest.
+  msg.calib = f.raw ? toCalibration(*f.raw, f.camera) : toCalibration(f.camera);
   msg.left = encodeImage(left, encoding);
   msg.right = encodeImage(right, encoding);
   return msg;
