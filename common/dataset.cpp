@@ -100,9 +100,31 @@ Dataset openDataset(const std::string& dir) {
       if (!fs::exists(calib))
         throw DatasetError("calibration calib_cam_to_cam.txt is missing in " + dir +
                            " and its parent");
-      const StereoCamera cam = loadKittiRawCalibration(calib.string());
+      StereoCamera cam = loadKittiRawCalibration(calib.string());
       ds.frames = pairImages(root / "image_02" / "data", root / "image_03" / "data");
-      for (auto& f : ds.frames) f.camera = cam;
+      // KITTI's unrectified downloads ("extract") have the same folders, with the
+      // cameras' own image size S_02 instead of S_rect_02: raw views, rectified on ingest.
+      int width = 0, height = 0;
+      imageSize(ds.frames.front().left_path, width, height);
+      std::optional<RawStereoCalibration> rig;
+      if (width != cam.width || height != cam.height) {
+        rig = loadKittiRawStereoCalibration(calib.string(), 2, 3);
+        if (rig->width != width || rig->height != height)
+          throw DatasetError(ds.frames.front().left_path + " is " + std::to_string(width) + "x" +
+                             std::to_string(height) + ": neither the rectified size " +
+                             std::to_string(cam.width) + "x" + std::to_string(cam.height) +
+                             " (S_rect_02) nor the raw size " + std::to_string(rig->width) + "x" +
+                             std::to_string(rig->height) + " (S_02) of " + calib.string());
+        try {
+          cam = computeRectification(*rig).camera;
+        } catch (const std::invalid_argument& e) {
+          throw DatasetError("calibration " + calib.string() + " cannot rectify: " + e.what());
+        }
+      }
+      for (auto& f : ds.frames) {
+        f.camera = cam;
+        f.raw = rig;
+      }
     } else if (fs::is_directory(root / "image_2") && fs::is_directory(root / "image_3")) {
       ds.layout = "kitti_object";
       ds.frames = pairImages(root / "image_2", root / "image_3");

@@ -115,7 +115,7 @@ TEST(toolsUnrectify, LabelPointsMoveWithTheReceiversPinhole) {
   EXPECT_NEAR(right.x - centre.x, 100 * rig.rectified.fx / cam.fx, 1e-9);
 }
 
-TEST(toolsUnrectify, RawFolderOpensAsRawAndGoesOutUnrectified) {
+TEST(commonDatasetRaw, PlainFolderWithRawCalibrationOpensAsRaw) {
   const fs::path dir = fs::temp_directory_path() / ("nerv_unrectify_" + std::to_string(::getpid()));
   fs::create_directories(dir / "left");
   fs::create_directories(dir / "right");
@@ -159,6 +159,57 @@ TEST(toolsUnrectify, RawFolderOpensAsRawAndGoesOutUnrectified) {
     ADD_FAILURE() << "a calibration for 1242x375 opened with 640x200 images";
   } catch (const DatasetError& e) {
     EXPECT_NE(std::string(e.what()).find("is for 1242x375 images"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+// KITTI's unrectified downloads: image_02/data at the cameras' size S_02 are raw views.
+TEST(commonDatasetRaw, KittiExtractFolderOpensAsRaw) {
+  const fs::path dir = fs::temp_directory_path() / ("nerv_extract_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "image_02" / "data");
+  fs::create_directories(dir / "image_03" / "data");
+  {
+    std::ofstream f(dir / "calib_cam_to_cam.txt");
+    f << "calib_time: 09-Jan-2012 13:57:47\n";
+    for (int cam : {0, 2, 3}) {
+      char id[4];
+      std::snprintf(id, sizeof id, "%02d", cam);
+      const double tx = cam == 2 ? 0.06 : cam == 3 ? -0.47 : 0.0;
+      f << "S_" << id << ": 3.200000e+02 1.200000e+02\n";
+      f << "K_" << id << ": 2.4e+02 0 1.6e+02 0 2.4e+02 6.0e+01 0 0 1\n";
+      f << "D_" << id << ": -0.1 0.02 0.0 0.0 0.0\n";
+      f << "R_" << id << ": 1 0 0 0 1 0 0 0 1\n";
+      f << "T_" << id << ": " << tx << " 0 0\n";
+      f << "S_rect_" << id << ": 3.000000e+02 1.000000e+02\n";
+      f << "P_rect_" << id << ": 2.3e+02 0 1.5e+02 " << tx * 230 << " 0 2.3e+02 5.0e+01 0 0 0 1 0\n";
+    }
+  }
+  auto images = [&](int w, int h) {
+    const cv::Mat img = texture({w, h}, 5);
+    cv::imwrite((dir / "image_02" / "data" / "0000000000.png").string(), img);
+    cv::imwrite((dir / "image_03" / "data" / "0000000000.png").string(), img);
+  };
+  images(300, 100);  // the rectified size: rectified views, as before
+  Dataset ds = openDataset(dir.string());
+  EXPECT_EQ(ds.layout, "kitti_raw");
+  EXPECT_FALSE(ds.frames.front().raw.has_value());
+  EXPECT_EQ(ds.frames.front().camera.width, 300);
+
+  images(320, 120);  // the raw size: raw views with cameras 2 and 3's calibration
+  ds = openDataset(dir.string());
+  ASSERT_TRUE(ds.frames.front().raw.has_value());
+  EXPECT_EQ(ds.frames.front().raw->width, 320);
+  EXPECT_DOUBLE_EQ(ds.frames.front().raw->left_D[0], -0.1);
+  EXPECT_NEAR(ds.frames.front().camera.baseline_m, 0.53, 1e-9);
+  EXPECT_EQ(ds.frames.front().camera.width, 320);
+
+  images(200, 80);  // neither
+  try {
+    openDataset(dir.string());
+    ADD_FAILURE() << "200x80 images opened with a 300x100 / 320x120 calibration";
+  } catch (const DatasetError& e) {
+    EXPECT_NE(std::string(e.what()).find("neither the rectified size 300x100"), std::string::npos) << e.what();
   }
   fs::remove_all(dir);
 }
