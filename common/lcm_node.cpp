@@ -99,15 +99,11 @@ int64_t Node::counter(const std::string& name) const {
 }
 
 void Node::noteSeq(const std::string& channel, int64_t seq) {
-  auto [it, fresh] = last_seq_.try_emplace(channel, seq);
-  if (fresh) return;
-  const int64_t gap = seq - it->second - 1;
-  // A jump backwards or far ahead is a restarted source or a replay, not a loss.
-  if (gap > 0 && gap < 1000) {
-    countDropped(gap);
-    count("lost_" + channel, gap);
+  const int64_t lost = seq_gaps_[channel].note(seq);
+  if (lost > 0) {
+    countDropped(lost);
+    count("lost_" + channel, lost);
   }
-  it->second = seq;
 }
 
 void Node::guarded(const std::function<void()>& body) {

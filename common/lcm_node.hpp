@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "message_check.hpp"
+#include "seq_gap_tracker.hpp"
 
 namespace nerv {
 
@@ -104,9 +105,10 @@ class Node {
   };
   void guarded(const std::function<void()>& body);
   // Frames missing from a channel's seq sequence were lost on the way (UDP
-  // buffer overrun, LCM queue full); they are counted as dropped.
+  // buffer overrun, LCM queue full); they are counted as dropped once overdue
+  // (seq_gap_tracker.hpp: shards publish out of order).
   void noteSeq(const std::string& channel, int64_t seq);
-  std::map<std::string, int64_t> last_seq_;
+  std::map<std::string, SeqGapTracker> seq_gaps_;
   void publishHealth();
 
   NodeOptions options_;
