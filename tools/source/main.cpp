@@ -1,7 +1,7 @@
 // nerv_source: plays a dataset folder as STEREO_FRAME messages.
 //
 //   nerv_source --data DIR [--rate HZ] [--in-flight K] [--encoding gray8|bgr8|png|jpeg]
-//               [--frames N] [--wait-for svc,svc] [--drain-timeout S] [--lcm-url URL]
+//               [--frames N] [--wait-for svc[/instance],...] [--drain-timeout S] [--lcm-url URL]
 //               [--prefix P] [--no-wait] [--check] [--repeat N]
 //
 // --rate 0 publishes as fast as the pipeline takes frames: at most K frames
@@ -120,7 +120,12 @@ int play(const Options& o) {
   Node node(opts);
   std::set<std::string> seen_services;
   std::set<int64_t> detected;
-  node.subscribe<health_t>("NERV_HEALTH", [&](const health_t& h) { seen_services.insert(h.service); }, 50);
+  // --wait-for names a service (any instance will do) or one instance ("stereo_matcher/shard1"):
+  // with shards, every shard must be up, or the first frames of a late one are lost.
+  node.subscribe<health_t>("NERV_HEALTH", [&](const health_t& h) {
+    seen_services.insert(h.service);
+    seen_services.insert(h.service + "/" + h.instance);
+  }, 50);
   node.subscribe<detections_t>("DETECTIONS", [&](const detections_t& d) {
     if (d.header.seq >= 0 && d.header.seq < static_cast<int64_t>(count)) detected.insert(d.header.seq);
   }, 50);

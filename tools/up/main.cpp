@@ -3,6 +3,9 @@
 //
 //   nerv_up --config FILE [--lcm-url URL] [--prefix P] [--services a,b] [--quiet] [--exit-when-idle S]
 //   nerv_up --status [--lcm-url URL] [--prefix P] [--listen S]
+//   nerv_up --config FILE [--services a,b] --list   the instances it would start, one
+//                                                   "service/instance" a line (what a
+//                                                   source waits for before its first frame)
 //
 // The `run:` section of the config says which services to start and how many
 // shards of each (`shards: {stereo_matcher: 2}`). A service that exits is
@@ -52,7 +55,7 @@ struct Child {
 
 struct Options {
   std::string config, lcm_url, prefix, bin_dir, services;
-  bool status_only = false, quiet = false;
+  bool status_only = false, quiet = false, list_only = false;
   double listen_s = 2.0, exit_when_idle_s = 0;
 };
 
@@ -156,6 +159,10 @@ int up(const Options& flags) {
       children.push_back(c);
     }
   }
+  if (o.list_only) {
+    for (const auto& c : children) std::printf("%s/%s\n", c.service.c_str(), c.instance.c_str());
+    return 0;
+  }
   // Configuration problems show now, once, not as a restart loop.
   for (const auto& c : children) {
     std::string cmd = c.argv[0] + " --config '" + o.config + "' --check-config 2>&1";
@@ -249,6 +256,7 @@ int main(int argc, char** argv) {
       else if (a == "--status") o.status_only = true;
       else if (a == "--listen") o.listen_s = std::stod(value());
       else if (a == "--quiet") o.quiet = true;
+      else if (a == "--list") o.list_only = true;
       else if (a == "--exit-when-idle") o.exit_when_idle_s = std::stod(value());
       else throw std::runtime_error("unknown flag '" + a + "'");
     }
