@@ -115,6 +115,7 @@ Params readParams(ConfigSection& s) {
   s.get("pitch_source", p.pitch_source, {"mean_shift", "slope", "plane"});
   s.get("plane_pitch_inliers_only", p.plane_pitch_inliers_only);
   s.get("plane_pitch_gate_deg", p.plane_pitch_gate_deg, 0.0, 90.0);
+  s.get("plane_pitch_gate_radius_share", p.plane_pitch_gate_radius_share, 0.0, 10.0);
   s.get("slope_inliers_only", p.slope_inliers_only);
   s.get("slope_mean_shift", p.slope_mean_shift);
   s.get("slope_tukey_k", p.slope_tukey_k, 1.0, 20.0);
@@ -315,7 +316,8 @@ SnvResult SnvExtrinsicEstimator::process(const cv::Mat& disparity, const StereoC
       fit.tukey_k = params_.plane_tukey_k;
       const DisparityPlane plane = fitDisparityPlane(pts, cam, fit, &start);
       const float plane_pitch = plane.valid ? normalPitchDeg(planeNormal(plane, cam)) : 0.0f;
-      if (plane.valid && std::abs(plane_pitch - pose.instant_pitch_deg) <= params_.plane_pitch_gate_deg) {
+      const float gate = std::max(params_.plane_pitch_gate_deg, params_.plane_pitch_gate_radius_share * ep.shift.radius);
+      if (plane.valid && std::abs(plane_pitch - pose.instant_pitch_deg) <= gate) {
         pose.instant_pitch_deg = plane_pitch;
         instant_normal = normalFromPitchRoll(pose.instant_pitch_deg, pose.instant_roll_deg);
         pose.instant_height_m = medianCameraHeight(road_points, instant_normal);

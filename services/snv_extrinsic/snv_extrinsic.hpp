@@ -55,12 +55,17 @@ struct Params {
   // Instant pitch source (docs/snv.md "pitch_oscillation"): "plane" = a second robust plane
   // fit (ground_plane_fit.hpp) on the ground samples inside the super-SNV mean-shift window,
   // started from the mean-shift pitch and the plane roll, kept when it is within
-  // plane_pitch_gate_deg of the mean shift (else the mean shift); "mean_shift" = the super-SNV
+  // the gate (plane_pitch_gate_deg, widened below) of the mean shift (else the mean shift); "mean_shift" = the super-SNV
   // mean-shift value; "slope" = robust fit of the samples' normalised vertical slopes
   // (slope_pitch.hpp; linear in the noise, but the matchers' local slopes are biased low).
   std::string pitch_source = "plane";
   bool plane_pitch_inliers_only = true;  // "plane": only samples inside the mean-shift window
   float plane_pitch_gate_deg = 0.5f;     // "plane": keep the mean shift when the plane differs by more [deg]
+  // ... or by more than this share of the mean-shift window's half-width, if that is wider: the
+  // mean shift's own bias grows with the spread of the per-normal pitch (a short-baseline
+  // camera: ZED 3.1-3.8 deg half-width, mean shift 0.4-1.0 deg off, the plane within 0.05 deg;
+  // KITTI geometry 1.1-2.0 deg; docs/snv.md "Short baselines").
+  float plane_pitch_gate_radius_share = 0.35f;
   bool slope_inliers_only = false;       // "slope": only samples inside the mean-shift window
   bool slope_mean_shift = false;         // "slope": location by adaptive mean shift instead of Tukey
   float slope_tukey_k = 4.685f;          // "slope": biweight cut-off in robust sigmas
