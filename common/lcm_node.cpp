@@ -67,7 +67,13 @@ bool Node::ownsFrame(int64_t seq) const {
 
 void Node::countOut(int64_t capture_utime, double processing_ms) {
   ++frames_out_;
-  latencies_ms_.push_back((nowUtime() - capture_utime) / 1000.0);
+  const double latency_ms = (nowUtime() - capture_utime) / 1000.0;
+  // Out before it was captured: the capture host's clock is ahead of this one (computers
+  // without clock synchronisation). Such a latency means nothing: counted, not averaged.
+  if (latency_ms < 0)
+    count("clock_skew_frames");
+  else
+    latencies_ms_.push_back(latency_ms);
   processing_ms_.push_back(processing_ms);
 }
 
@@ -138,7 +144,7 @@ void Node::publishHealth() {
   for (double v : processing_ms_) sum += v;
   h.processing_ms = processing_ms_.empty() ? 0.f : static_cast<float>(sum / processing_ms_.size());
   // degraded: errors since the last report; idle: nothing published since then.
-  h.status = errors_ > errors_at_last_health_ ? "degraded" : (latencies_ms_.empty() ? "idle" : "ok");
+  h.status = errors_ > errors_at_last_health_ ? "degraded" : (processing_ms_.empty() ? "idle" : "ok");
   errors_at_last_health_ = errors_;
   h.last_error = last_error_;
   latencies_ms_.clear();

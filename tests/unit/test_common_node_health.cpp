@@ -1,0 +1,57 @@
+// The node helper's health report, on LCM's in-process bus (memq://): latencies and
+// the frames whose capture time lies in this computer's future (unsynchronised clocks).
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include "lcm_node.hpp"
+#include "nerv/health_t.hpp"
+
+using namespace nerv;
+
+namespace {
+
+health_t reportOnce(Node& node) {
+  std::optional<health_t> got;
+  node.subscribe<health_t>("NERV_HEALTH", [&](const health_t& h) { got = h; }, 4);
+  node.reportHealth();
+  for (int i = 0; i < 20 && !got; ++i) node.poll(50);
+  EXPECT_TRUE(got.has_value()) << "no NERV_HEALTH on memq://";
+  return got.value_or(health_t{});
+}
+
+int64_t counterOf(const health_t& h, const std::string& name) {
+  for (int i = 0; i < h.num_counters; ++i)
+    if (h.counter_names[i] == name) return h.counter_values[i];
+  return 0;
+}
+
+NodeOptions memq() {
+  NodeOptions o;
+  o.service = "test";
+  o.lcm_url = "memq://";
+  o.health_period_s = 1000;  // only the report the test asks for
+  return o;
+}
+
+}  // namespace
+
+TEST(commonNodeHealth, FramesFromTheFutureAreCountedNotAveraged) {
+  Node node(memq());
+  node.countOut(nowUtime() - 20'000, 1.0);     // captured 20 ms ago
+  node.countOut(nowUtime() + 5'000'000, 1.0);  // "captured" in 5 s: the capture host's clock is ahead
+  const health_t h = reportOnce(node);
+  EXPECT_EQ(h.frames_out, 2);
+  EXPECT_EQ(counterOf(h, "clock_skew_frames"), 1);
+  EXPECT_GE(h.latency_p95_ms, 20.0f);
+  EXPECT_LT(h.latency_p95_ms, 1000.0f) << "the skewed frame must not enter the latency";
+  EXPECT_EQ(h.status, "ok");
+}
+
+TEST(commonNodeHealth, OnlySkewedFramesStillCountAsWorking) {
+  Node node(memq());
+  node.countOut(nowUtime() + 5'000'000, 1.0);
+  const health_t h = reportOnce(node);
+  EXPECT_EQ(counterOf(h, "clock_skew_frames"), 1);
+  EXPECT_EQ(h.status, "ok") << "frames went out: not idle";
+}
