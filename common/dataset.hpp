@@ -8,11 +8,10 @@
 //   KITTI object  image_2/ image_3/ calib/NNNNNN.txt [label_2/ disp_occ_0/]
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <optional>
 
 #include "rectification.hpp"
 #include "stereo_camera.hpp"

@@ -3,15 +3,15 @@
 namespace nerv {
 
 int64_t SeqGapTracker::note(int64_t seq) {
-  constexpr int64_t kFarAhead = 1000;
-  if (!started_ || seq - newest_ >= kFarAhead || newest_ - seq > window_) {
+  constexpr int64_t kFar = 1000;
+  if (!started_ || seq - newest_ >= kFar || newest_ - seq >= kFar) {
     started_ = true;
     newest_ = seq;
     missing_.clear();
     return 0;
   }
   if (seq <= newest_) {
-    missing_.erase(seq);  // a late one (or a duplicate): no longer missing
+    missing_.erase(seq);  // a late one, a duplicate or a replayed one: no longer missing
     return 0;
   }
   for (int64_t s = newest_ + 1; s < seq; ++s) missing_.insert(s);

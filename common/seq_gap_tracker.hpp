@@ -15,9 +15,11 @@ class SeqGapTracker {
   // window: how far (in seqs) a message may arrive late and still not count as lost.
   explicit SeqGapTracker(int64_t window = 16) : window_(window < 1 ? 1 : window) {}
 
-  // Notes an arrival; returns how many seqs became lost with it. A jump backwards by
-  // more than the window, or ahead by 1000 or more, is a restarted source or a replay:
-  // counting starts again from it, and what was still missing then is not counted.
+  // Notes an arrival; returns how many seqs became lost with it. A jump by 1000 or more
+  // either way is a restarted source: counting starts again from it, and what was still
+  // missing then is not counted. A smaller step back (a message later than the window, a
+  // duplicate, a log replayed from its start) changes nothing; counting goes on from the
+  // newest seq, so seqs received once are never counted as lost.
   int64_t note(int64_t seq);
 
   // Seqs missing but not yet overdue.

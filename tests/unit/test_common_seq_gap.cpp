@@ -78,6 +78,8 @@ TEST(commonSeqGap, RestartsAndReplaysAreNotLosses) {
   for (int64_t s = 0; s < 110; ++s) EXPECT_EQ(t.note(s), 0);
   EXPECT_EQ(t.note(0), 0);  // a replay from the start
   EXPECT_EQ(t.note(1), 0);
+  for (int64_t s = 2; s < 110; ++s) EXPECT_EQ(t.note(s), 0);
+  EXPECT_EQ(t.note(110), 0);  // the replay runs on past the newest seq
   EXPECT_EQ(t.note(5000), 0);  // a source restarted far ahead
   EXPECT_EQ(t.note(5001), 0);
   EXPECT_EQ(t.note(5001), 0);  // a duplicate
@@ -85,4 +87,19 @@ TEST(commonSeqGap, RestartsAndReplaysAreNotLosses) {
   EXPECT_EQ(t.note(5004), 0);
   EXPECT_EQ(t.note(5005), 0);
   EXPECT_EQ(t.note(5006), 1);  // 5002 never came
+  EXPECT_EQ(t.note(3), 0);     // a restart far back
+  EXPECT_EQ(t.note(4), 0);
+}
+
+TEST(commonSeqGap, AVeryLateMessageCausesNoFalseLosses) {
+  // 20 seqs late with a window of 4: counted lost when it was overdue, and what came
+  // after it is not counted again.
+  SeqGapTracker t(4);
+  int64_t lost = 0;
+  for (int64_t s = 0; s <= 100; ++s)
+    if (s != 80) lost += t.note(s);
+  EXPECT_EQ(lost, 1);
+  EXPECT_EQ(t.note(80), 0);
+  for (int64_t s = 101; s < 140; ++s) lost += t.note(s);
+  EXPECT_EQ(lost, 1);
 }
