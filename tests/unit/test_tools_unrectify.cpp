@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "dataset.hpp"
+#include "frame_grid.hpp"
 #include "message_convert.hpp"
 #include "rectification.hpp"
 #include "unrectify.hpp"
@@ -212,4 +213,34 @@ TEST(commonDatasetRaw, KittiExtractFolderOpensAsRaw) {
     EXPECT_NE(std::string(e.what()).find("neither the rectified size 300x100"), std::string::npos) << e.what();
   }
   fs::remove_all(dir);
+}
+
+// nerv_render / nerv_report draw on the left view of STEREO_FRAME: a raw view is rectified
+// first, as the stereo_matcher does, so boxes in the rectified frame land on their objects.
+TEST(toolsUnrectify, RenderedLeftViewOfARawFrameIsRectified) {
+  const StereoCamera cam = kittiLike();
+  const RawRig rig = makeRawRig(cam);
+  const cv::Mat raw_left = unrectifyView(texture({cam.width, cam.height}, 6), cam, rig, true);
+  LogFrame frame;
+  frame.stereo = stereo_frame_t{};
+  frame.stereo->calib = toCalibration(rig.raw, rig.rectified);
+  frame.stereo->left = encodeImage(raw_left, "gray8");
+  std::string problem;
+  const cv::Mat shown = viz::leftImage(frame, &problem);
+  ASSERT_FALSE(shown.empty()) << problem;
+  Rectifier rectifier;
+  cv::Mat expected, unused;
+  rectifier.rectify(rig.raw, raw_left, raw_left, expected, unused);
+  cv::Mat gray;
+  cv::cvtColor(shown, gray, cv::COLOR_BGR2GRAY);
+  EXPECT_EQ(cv::norm(gray, expected, cv::NORM_INF), 0.0);
+
+  frame.stereo->calib.R[0] = 2.0;  // not a rotation: said, not drawn raw
+  EXPECT_TRUE(viz::leftImage(frame, &problem).empty());
+  EXPECT_NE(problem.find("cannot be rectified"), std::string::npos) << problem;
+
+  frame.stereo->calib = toCalibration(rig.rectified);  // a rectified frame: shown as it is
+  const cv::Mat as_is = viz::leftImage(frame, &problem);
+  cv::cvtColor(as_is, gray, cv::COLOR_BGR2GRAY);
+  EXPECT_EQ(cv::norm(gray, raw_left, cv::NORM_INF), 0.0);
 }

@@ -8,6 +8,7 @@
 #include "color_map.hpp"
 #include "message_convert.hpp"
 #include "overlay_draw.hpp"
+#include "rectification.hpp"
 
 namespace nerv::viz {
 
@@ -137,6 +138,21 @@ cv::Mat leftImage(const LogFrame& frame, std::string* problem) {
   if (!why.empty() || img.empty()) {
     if (problem) *problem = "left image: " + (why.empty() ? std::string("empty") : why);
     return {};
+  }
+  if (!frame.stereo->calib.rectified) {
+    // A raw view: everything drawn on it (boxes, stixels, disparity) refers to the pair the
+    // stereo_matcher rectified, so the view is rectified the same way first.
+    static Rectifier rectifier;
+    try {
+      const Rectification& r = rectifier.get(toRawCalibration(frame.stereo->calib));
+      if (img.size() != r.left_map1.size()) throw std::invalid_argument("image size differs from the calibration's");
+      cv::Mat rectified;
+      cv::remap(img, rectified, r.left_map1, r.left_map2, cv::INTER_LINEAR);
+      img = rectified;
+    } catch (const std::invalid_argument& e) {
+      if (problem) *problem = std::string("raw left image cannot be rectified: ") + e.what();
+      return {};
+    }
   }
   return toBgr(img);
 }

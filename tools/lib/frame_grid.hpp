@@ -31,7 +31,10 @@ struct GridOptions {
 cv::Point panelOrigin(int index, cv::Size cell);
 
 // The frame's left image as BGR, or empty with `problem` set (no STEREO_FRAME,
-// an image that does not decode).
+// an image that does not decode, a raw view whose calibration cannot be rectified).
+// A raw view (calib.rectified false) comes back rectified as the stereo_matcher
+// rectifies it, so the detections and stixels drawn on it sit on their objects.
+// Not thread-safe (one cache of rectification maps).
 cv::Mat leftImage(const LogFrame& frame, std::string* problem);
 
 // Renders the grid. Returns an empty Mat and sets `problem` when the frame has
