@@ -77,10 +77,15 @@ struct HealthBoard {
   void print(FILE* out) const {
     for (const auto& [key, h] : last) {
       const double age = std::chrono::duration<double>(Clock::now() - seen.at(key)).count();
-      std::fprintf(out, "%-26s pid %-7d %-8s in %-6lld out %-6lld dropped %-4lld errors %-4lld p95 %6.1f ms  %5.1f ms/frame%s%s\n",
+      // Frames out before their capture time: this computer's clock lags the camera's.
+      std::string skew;
+      for (int i = 0; i < h.num_counters; ++i)
+        if (h.counter_names[i] == "clock_skew_frames" && h.counter_values[i] > 0)
+          skew = "  clock behind the camera's: " + std::to_string(h.counter_values[i]) + " frames";
+      std::fprintf(out, "%-26s pid %-7d %-8s in %-6lld out %-6lld dropped %-4lld errors %-4lld p95 %6.1f ms  %5.1f ms/frame%s%s%s\n",
                    key.c_str(), h.pid, age > 3 ? "silent" : h.status.c_str(), (long long)h.frames_in,
                    (long long)h.frames_out, (long long)h.frames_dropped, (long long)h.errors,
-                   h.latency_p95_ms, h.processing_ms, h.last_error.empty() ? "" : "  last: ",
+                   h.latency_p95_ms, h.processing_ms, skew.c_str(), h.last_error.empty() ? "" : "  last: ",
                    h.last_error.c_str());
     }
   }
