@@ -25,7 +25,7 @@ int serve(ServiceConfig& config) {
   const stereo::Params params = stereo::readParams(config.section());
   std::string encoding = "u16le";
   config.section().get("output_encoding", encoding, {"u16le", "png16", "delta16"});
-  int queue = 2;
+  int queue = 1;  // the newest frame waits; older ones are dropped (docs/stereo.md "Queue of one")
   config.section().get("queue", queue, 1, 100);
   bool publish_confidence = true;
   config.section().get("publish_confidence", publish_confidence);
