@@ -281,11 +281,7 @@ Rectifier& rectifier() {
 }
 
 cv::Mat rectifiedLeft(const DatasetFrame& f, const cv::Mat& left) {
-  if (!f.raw) return left;
-  const Rectification& r = rectifier().get(*f.raw);
-  cv::Mat out;
-  cv::remap(left, out, r.left_map1, r.left_map2, cv::INTER_LINEAR);
-  return out;
+  return f.raw ? rectifier().rectifyLeft(*f.raw, left) : left;
 }
 
 cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::StereoMatcher& m,
@@ -299,14 +295,18 @@ cv::Mat disparityOf(const DatasetFrame& f, const stereo::Params& sp, stereo::Ste
   cv::Mat fixed;
   if (fs::exists(path)) fixed = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (fixed.empty() || fixed.type() != CV_16U) {
-    const cv::Mat left = matcherInput(f.left_path, gray_offset);
-    const cv::Mat right = matcherInput(f.right_path, gray_offset);
+    cv::Mat left = matcherInput(f.left_path, gray_offset);
+    cv::Mat right = matcherInput(f.right_path, gray_offset);
     if (left.empty() || right.empty()) throw std::runtime_error("cannot read " + f.left_path);
-    cv::Mat d, left_rect, right_rect;
-    if (f.raw) rectifier().rectify(*f.raw, left, right, left_rect, right_rect);
+    if (f.raw) {
+      cv::Mat left_rect, right_rect;
+      rectifier().rectify(*f.raw, left, right, left_rect, right_rect);
+      left = left_rect;
+      right = right_rect;
+    }
+    cv::Mat d;
     const auto t0 = std::chrono::steady_clock::now();
-    if (f.raw) m.compute(left_rect, right_rect, d);
-    else m.compute(left, right, d);
+    m.compute(left, right, d);
     ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     fixed = wireFixed(d);
     fs::create_directories(cache_dir);

@@ -51,6 +51,15 @@ std::vector<DatasetFrame> pairImages(const fs::path& left_dir, const fs::path& r
   return frames;
 }
 
+// The camera a raw rig rectifies to (what the receiver computes), or a DatasetError.
+StereoCamera rectifiedCamera(const RawStereoCalibration& rig, const fs::path& calib) {
+  try {
+    return computeRectification(rig).camera;
+  } catch (const std::invalid_argument& e) {
+    throw DatasetError("calibration " + calib.string() + " cannot rectify: " + e.what());
+  }
+}
+
 }  // namespace
 
 Dataset openDataset(const std::string& dir) {
@@ -79,11 +88,7 @@ Dataset openDataset(const std::string& dir) {
           throw DatasetError("calibration " + raw_calib.string() + " is for " + std::to_string(rig->width) +
                              "x" + std::to_string(rig->height) + " images, " + ds.frames.front().left_path +
                              " is " + std::to_string(width) + "x" + std::to_string(height));
-        try {
-          cam = computeRectification(*rig).camera;
-        } catch (const std::invalid_argument& e) {
-          throw DatasetError("calibration " + raw_calib.string() + " cannot rectify: " + e.what());
-        }
+        cam = rectifiedCamera(*rig, raw_calib);
       } else {
         cam = loadPlainCalibration(calib.string());
       }
@@ -115,11 +120,7 @@ Dataset openDataset(const std::string& dir) {
                              std::to_string(cam.width) + "x" + std::to_string(cam.height) +
                              " (S_rect_02) nor the raw size " + std::to_string(rig->width) + "x" +
                              std::to_string(rig->height) + " (S_02) of " + calib.string());
-        try {
-          cam = computeRectification(*rig).camera;
-        } catch (const std::invalid_argument& e) {
-          throw DatasetError("calibration " + calib.string() + " cannot rectify: " + e.what());
-        }
+        cam = rectifiedCamera(*rig, calib);
       }
       for (auto& f : ds.frames) {
         f.camera = cam;

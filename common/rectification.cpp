@@ -93,4 +93,12 @@ const StereoCamera& Rectifier::rectify(const RawStereoCalibration& raw, const cv
   return r.camera;
 }
 
+cv::Mat Rectifier::rectifyLeft(const RawStereoCalibration& raw, const cv::Mat& left) {
+  const Rectification& r = get(raw);
+  if (left.size() != r.left_map1.size()) throw std::invalid_argument("image size differs from the calibration's");
+  cv::Mat out;
+  cv::remap(left, out, r.left_map1, r.left_map2, cv::INTER_LINEAR);
+  return out;
+}
+
 }  // namespace nerv

@@ -54,6 +54,9 @@ class Rectifier {
   // Rectifies both images (any type remap accepts). Returns the rectified camera.
   const StereoCamera& rectify(const RawStereoCalibration& raw, const cv::Mat& left,
                               const cv::Mat& right, cv::Mat& left_out, cv::Mat& right_out);
+  // The left view alone (what is drawn on: overlays, renders). Throws std::invalid_argument
+  // as get(), and when the image is not of the calibration's size.
+  cv::Mat rectifyLeft(const RawStereoCalibration& raw, const cv::Mat& left);
   std::size_t computed() const { return computed_; }  // maps computed so far (cache misses)
 
  private:

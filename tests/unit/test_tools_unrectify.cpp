@@ -62,6 +62,16 @@ double meanError(const cv::Mat& rectified, const cv::Mat& original, const Stereo
   return cv::mean(diff)[0];
 }
 
+// openDataset(dir) must fail with a message containing `fragment`.
+void expectDatasetError(const fs::path& dir, const std::string& fragment, const std::string& what) {
+  try {
+    openDataset(dir.string());
+    ADD_FAILURE() << what << " opened";
+  } catch (const DatasetError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 
 TEST(toolsUnrectify, RigRectifiesBackToTheOriginalOrientationAndBaseline) {
@@ -142,12 +152,7 @@ TEST(commonDatasetRaw, PlainFolderWithRawCalibrationOpensAsRaw) {
 
   // Both calibrations: which one describes the images is unclear, so it is an error.
   std::ofstream(dir / "calib.yaml") << "width: 640\nheight: 200\nfx: 380\nfy: 380\ncx: 318.5\ncy: 97.25\nbaseline_m: 0.54\n";
-  try {
-    openDataset(dir.string());
-    ADD_FAILURE() << "a folder with both calibrations opened";
-  } catch (const DatasetError& e) {
-    EXPECT_NE(std::string(e.what()).find("both calib.yaml"), std::string::npos) << e.what();
-  }
+  expectDatasetError(dir, "both calib.yaml", "a folder with both calibrations");
   fs::remove(dir / "calib.yaml");
 
   // A rig calibrated for another image size than the images'.
@@ -155,12 +160,7 @@ TEST(commonDatasetRaw, PlainFolderWithRawCalibrationOpensAsRaw) {
   other.width = 1242;
   other.height = 375;
   writeOpenCvStereoCalibration((dir / "raw_calib.yaml").string(), other);
-  try {
-    openDataset(dir.string());
-    ADD_FAILURE() << "a calibration for 1242x375 opened with 640x200 images";
-  } catch (const DatasetError& e) {
-    EXPECT_NE(std::string(e.what()).find("is for 1242x375 images"), std::string::npos) << e.what();
-  }
+  expectDatasetError(dir, "is for 1242x375 images", "a calibration for 1242x375 with 640x200 images");
   fs::remove_all(dir);
 }
 
@@ -206,12 +206,7 @@ TEST(commonDatasetRaw, KittiExtractFolderOpensAsRaw) {
   EXPECT_EQ(ds.frames.front().camera.width, 320);
 
   images(200, 80);  // neither
-  try {
-    openDataset(dir.string());
-    ADD_FAILURE() << "200x80 images opened with a 300x100 / 320x120 calibration";
-  } catch (const DatasetError& e) {
-    EXPECT_NE(std::string(e.what()).find("neither the rectified size 300x100"), std::string::npos) << e.what();
-  }
+  expectDatasetError(dir, "neither the rectified size 300x100", "200x80 images with a 300x100 / 320x120 calibration");
   fs::remove_all(dir);
 }
 

@@ -144,11 +144,7 @@ cv::Mat leftImage(const LogFrame& frame, std::string* problem) {
     // stereo_matcher rectified, so the view is rectified the same way first.
     static Rectifier rectifier;
     try {
-      const Rectification& r = rectifier.get(toRawCalibration(frame.stereo->calib));
-      if (img.size() != r.left_map1.size()) throw std::invalid_argument("image size differs from the calibration's");
-      cv::Mat rectified;
-      cv::remap(img, rectified, r.left_map1, r.left_map2, cv::INTER_LINEAR);
-      img = rectified;
+      img = rectifier.rectifyLeft(toRawCalibration(frame.stereo->calib), img);
     } catch (const std::invalid_argument& e) {
       if (problem) *problem = std::string("raw left image cannot be rectified: ") + e.what();
       return {};
