@@ -10,7 +10,10 @@
 // The `run:` section of the config says which services to start and how many
 // shards of each (`shards: {stereo_matcher: 2}`). A service that exits is
 // restarted after a back-off that doubles from restart_backoff_s up to
-// restart_backoff_max_s (and resets once it has run for 30 s). A status line
+// restart_backoff_max_s (and resets once it has run for 30 s). A service whose
+// own NERV_HEALTH stops for run.watchdog_s (5 s; 0 = off), or that sends none
+// within run.watchdog_startup_s (30 s) of its start, is hung: it is killed
+// (SIGKILL) and restarted the same way (service_watchdog.hpp). A status line
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
 // every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
 #include <signal.h>
@@ -33,6 +36,7 @@
 #include "pipeline_keys.hpp"
 #include "lcm_node.hpp"
 #include "nerv/health_t.hpp"
+#include "service_watchdog.hpp"
 
 using namespace nerv;
 using Clock = std::chrono::steady_clock;
@@ -50,6 +54,8 @@ struct Child {
   pid_t pid = -1;
   int restarts = 0;
   double backoff_s = 0;
+  ServiceWatchdog watchdog;
+  bool hung = false;  // killed by the watchdog, not yet reaped
   Clock::time_point started, restart_at;
 };
 
@@ -59,9 +65,13 @@ struct Options {
   double listen_s = 2.0, exit_when_idle_s = 0;
 };
 
+double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
+
 struct HealthBoard {
   std::map<std::string, health_t> last;  // "service/instance" -> report
   std::map<std::string, Clock::time_point> seen;
+  std::map<int32_t, Clock::time_point> seen_pid;  // the latest report of each process on this host
+  std::string host;
   int64_t broken = 0;
   void onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     health_t h;
@@ -73,6 +83,7 @@ struct HealthBoard {
     const std::string key = h.service + "/" + h.instance;
     last[key] = h;
     seen[key] = Clock::now();
+    if (h.host == host) seen_pid[h.pid] = seen[key];
   }
   void print(FILE* out) const {
     for (const auto& [key, h] : last) {
@@ -138,6 +149,11 @@ int up(const Options& flags) {
   double backoff0 = 0.5, backoff_max = 10;
   run.get("restart_backoff_s", backoff0, 0.05, 60);
   run.get("restart_backoff_max_s", backoff_max, 0.05, 600);
+  WatchdogSettings watchdog;
+  run.get("watchdog_s", watchdog.silent_s, 0, 600);
+  run.get("watchdog_startup_s", watchdog.startup_s, 1, 3600);
+  if (watchdog.silent_s > 0 && watchdog.silent_s < 2)
+    throw ConfigError("config key 'run.watchdog_s' must be 0 (off) or at least 2 s: services report once a second");
   ConfigSection shards = run.section("shards");
   std::map<std::string, int> shard_count;
   for (const char* s : kServices) {
@@ -161,6 +177,7 @@ int up(const Options& flags) {
       if (!o.prefix.empty()) c.argv.insert(c.argv.end(), {"--prefix", o.prefix});
       if (shard_count[s] > 1) c.argv.insert(c.argv.end(), {"--shard", std::to_string(k) + "/" + std::to_string(shard_count[s])});
       if (!std::filesystem::exists(c.argv[0])) throw std::runtime_error("service binary " + c.argv[0] + " is missing");
+      c.watchdog = ServiceWatchdog(watchdog);
       children.push_back(c);
     }
   }
@@ -181,11 +198,15 @@ int up(const Options& flags) {
   lcm::LCM lcm(url);
   if (!lcm.good()) throw std::runtime_error("LCM cannot start on " + url);
   HealthBoard board;
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  board.host = host;
   lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
 
   for (auto& c : children) {
     c.pid = spawn(c);
     c.started = Clock::now();
+    c.watchdog.started(seconds(c.started));
     c.backoff_s = backoff0;
     std::fprintf(stderr, "nerv_up: started %s/%s (pid %d)\n", c.service.c_str(), c.instance.c_str(), c.pid);
   }
@@ -199,16 +220,32 @@ int up(const Options& flags) {
         if (waitpid(c.pid, &wstatus, WNOHANG) == c.pid) {
           const double ran = std::chrono::duration<double>(Clock::now() - c.started).count();
           if (ran > 30) c.backoff_s = backoff0;
-          std::fprintf(stderr, "nerv_up: %s/%s (pid %d) %s %d; restart in %.1f s\n", c.service.c_str(),
+          std::fprintf(stderr, "nerv_up: %s/%s (pid %d) %s %d%s; restart in %.1f s\n", c.service.c_str(),
                        c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
-                       WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus), c.backoff_s);
+                       WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
+                       c.hung ? " (hung)" : "", c.backoff_s);
           c.pid = -1;
+          c.hung = false;
           c.restart_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(c.backoff_s));
           c.backoff_s = std::min(backoff_max, c.backoff_s * 2);
+        } else if (!c.hung) {
+          if (auto it = board.seen_pid.find(c.pid); it != board.seen_pid.end())
+            c.watchdog.reported(seconds(it->second));
+          const double now = seconds(Clock::now());
+          if (c.watchdog.hung(now)) {
+            // Stopped, deadlocked or stuck in one frame: it still exists, so only a kill
+            // brings it back. Reaped (and restarted after the back-off) above.
+            std::fprintf(stderr, "nerv_up: %s/%s (pid %d) sent no health for %.1f s%s: hung, killing it\n",
+                         c.service.c_str(), c.instance.c_str(), c.pid, c.watchdog.silentFor(now),
+                         c.watchdog.hasReported() ? "" : " since its start");
+            kill(c.pid, SIGKILL);
+            c.hung = true;
+          }
         }
       } else if (Clock::now() >= c.restart_at) {
         c.pid = spawn(c);
         c.started = Clock::now();
+        c.watchdog.started(seconds(c.started));
         ++c.restarts;
         std::fprintf(stderr, "nerv_up: restarted %s/%s (pid %d, restart %d)\n", c.service.c_str(),
                      c.instance.c_str(), c.pid, c.restarts);

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# A hung service is restarted: a process that still exists but has stopped sending
+# NERV_HEALTH (kill -STOP here; a deadlock or a frame it never finishes in a car) is
+# killed by nerv_up's watchdog and started again, and a pipeline at work is never
+# taken for hung.
+source "$(dirname "$0")/lib.sh"
+enter_private_bus "$@"
+tmp=$(mktemp -d)
+trap 'stop_children; rm -rf "$tmp"' EXIT
+data=$(synthetic_sequence urban 6)
+cp "$NERV_ROOT/config/pipeline.yaml" "$tmp/watchdog.yaml"
+printf 'run:\n  watchdog_s: 2\n' >>"$tmp/watchdog.yaml"
+
+# 1. Busy, not hung: 18 frames at 10 Hz through all four services under a 2 s watchdog.
+"$NERV_ROOT/tools/nerv" run --data "$data" --repeat 3 --out "$tmp/busy" --config "$tmp/watchdog.yaml" \
+  --rate 10 >"$tmp/busy.txt" 2>&1 || fail "run under the watchdog: $(tail -3 "$tmp/busy.txt")"
+if grep -q "sent no health" "$tmp/busy/logs/services.log"; then
+  fail "a working service was taken for hung: $(grep "sent no health" "$tmp/busy/logs/services.log")"
+fi
+pass "18 frames through four services, none taken for hung by a 2 s watchdog"
+
+# 2. Hung: stop the validator, keep the stixel stage running beside it.
+reports() {  # reports SERVICE PID: that process is on the health board and not silent
+  "$BIN/nerv_up" --status --listen 1.5 2>/dev/null | grep -Eq "^$1/0 +pid $2 +(ok|idle) "
+}
+start_child "$tmp/up.log" "$BIN/nerv_up" --config "$tmp/watchdog.yaml" --services stixel,validator --quiet
+for svc in validator stixel; do
+  wait_until 30 pgrep -f "^$BIN/$svc " >/dev/null || fail "$svc never started: $(cat "$tmp/up.log")"
+done
+victim=$(pgrep -f "^$BIN/validator ")
+bystander=$(pgrep -f "^$BIN/stixel ")
+wait_until 30 reports validator "$victim" || fail "validator $victim never reported health"
+kill -STOP "$victim"
+wait_until 20 grep -q "validator/0 (pid $victim) sent no health" "$tmp/up.log" \
+  || fail "the stopped validator was not taken for hung: $(cat "$tmp/up.log")"
+wait_until 10 bash -c "! kill -0 $victim 2>/dev/null" || fail "the hung validator $victim is still there"
+wait_until 20 grep -q "restarted validator/0" "$tmp/up.log" || fail "validator not restarted: $(cat "$tmp/up.log")"
+# Restarted like a crashed service, after the first back-off (restart_backoff_s 0.5).
+grep -q "validator/0 (pid $victim) killed by signal 9 (hung); restart in 0.5 s" "$tmp/up.log" \
+  || fail "not restarted after the first back-off: $(grep "pid $victim" "$tmp/up.log")"
+fresh=$(pgrep -f "^$BIN/validator ")
+[[ -n "$fresh" && "$fresh" != "$victim" ]] || fail "no new validator process ($fresh)"
+wait_until 30 reports validator "$fresh" || fail "the restarted validator $fresh does not report"
+[[ "$(pgrep -f "^$BIN/stixel ")" == "$bystander" ]] || fail "the stixel stage beside it was restarted too"
+if grep -q "restarted stixel" "$tmp/up.log"; then fail "stixel restarted: $(cat "$tmp/up.log")"; fi
+pass "$(grep -o "validator/0 (pid $victim) sent no health for [0-9.]* s" "$tmp/up.log"): killed, restarted as pid $fresh, reporting again; stixel untouched"
+stop_children
+no_survivors || fail "processes survived"
+echo "2 passed, 0 failed"
