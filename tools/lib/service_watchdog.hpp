@@ -6,12 +6,15 @@
 //
 // Times are seconds on one monotonic clock. A process gets `startup_s` for its
 // first report (warm-up, thread pools) and `silent_s` between reports after it.
+// A service reports between frames, so one frame longer than `silent_s` is taken
+// for a hang: the default matcher needs 1.8 s for the largest frame the limits
+// let in (4096x3072, idle machine), OpenCV's 8-path SGBM 31 s (2026-12-06).
 #pragma once
 
 namespace nerv {
 
 struct WatchdogSettings {
-  double silent_s = 5.0;    // 0 = off; else at least 2 (reports come once a second)
+  double silent_s = 10.0;   // 0 = off; else at least 2 (reports come once a second)
   double startup_s = 30.0;  // allowance before the first report
 };
 

@@ -11,7 +11,7 @@
 // shards of each (`shards: {stereo_matcher: 2}`). A service that exits is
 // restarted after a back-off that doubles from restart_backoff_s up to
 // restart_backoff_max_s (and resets once it has run for 30 s). A service whose
-// own NERV_HEALTH stops for run.watchdog_s (5 s; 0 = off), or that sends none
+// own NERV_HEALTH stops for run.watchdog_s (10 s; 0 = off), or that sends none
 // within run.watchdog_startup_s (30 s) of its start, is hung: it is killed
 // (SIGKILL) and restarted the same way (service_watchdog.hpp). A status line
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
@@ -235,9 +235,10 @@ int up(const Options& flags) {
           if (c.watchdog.hung(now)) {
             // Stopped, deadlocked or stuck in one frame: it still exists, so only a kill
             // brings it back. Reaped (and restarted after the back-off) above.
-            std::fprintf(stderr, "nerv_up: %s/%s (pid %d) sent no health for %.1f s%s: hung, killing it\n",
+            std::fprintf(stderr, "nerv_up: %s/%s (pid %d) sent no health for %.1f s%s: hung (run.%s), killing it\n",
                          c.service.c_str(), c.instance.c_str(), c.pid, c.watchdog.silentFor(now),
-                         c.watchdog.hasReported() ? "" : " since its start");
+                         c.watchdog.hasReported() ? "" : " since its start",
+                         c.watchdog.hasReported() ? "watchdog_s" : "watchdog_startup_s");
             kill(c.pid, SIGKILL);
             c.hung = true;
           }
