@@ -2,7 +2,7 @@
 # A hung service is restarted: a process that still exists but has stopped sending
 # NERV_HEALTH (kill -STOP here; a deadlock or a frame it never finishes in a car) is
 # killed by nerv_up's watchdog and started again, and a pipeline at work is never
-# taken for hung.
+# taken for hung. nerv_up's own NERV_HEALTH says how often and why it restarted what.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
@@ -18,6 +18,12 @@ if grep -q "sent no health" "$tmp/busy/logs/services.log"; then
   fail "a working service was taken for hung: $(grep "sent no health" "$tmp/busy/logs/services.log")"
 fi
 pass "18 frames through four services, none taken for hung by a 2 s watchdog"
+host=$(hostname)
+"$BIN/nerv_export" "$tmp/busy/nerv.lcmlog" --json --no-blobs | grep '"channel":"NERV_HEALTH"' \
+  | grep '"service":"nerv_up"' >"$tmp/up_health.jsonl" || fail "the log holds no NERV_HEALTH of nerv_up"
+grep -q "\"instance\":\"$host\",\"host\":\"$host\"" "$tmp/up_health.jsonl" || fail "nerv_up's report is not named by its host"
+if grep -q '"errors":[1-9]' "$tmp/up_health.jsonl"; then fail "nerv_up reported restarts: $(tail -n1 "$tmp/up_health.jsonl")"; fi
+pass "the log holds nerv_up's own reports ($(wc -l <"$tmp/up_health.jsonl")), no restart in them"
 
 # 2. Hung: stop the validator, keep the stixel stage running beside it.
 reports() {  # reports SERVICE PID: that process is on the health board and not silent
@@ -44,6 +50,11 @@ wait_until 30 reports validator "$fresh" || fail "the restarted validator $fresh
 [[ "$(pgrep -f "^$BIN/stixel ")" == "$bystander" ]] || fail "the stixel stage beside it was restarted too"
 if grep -q "restarted stixel" "$tmp/up.log"; then fail "stixel restarted: $(cat "$tmp/up.log")"; fi
 pass "$(grep -o "validator/0 (pid $victim) sent no health for [0-9.]* s" "$tmp/up.log"): killed, restarted as pid $fresh, reporting again; stixel untouched"
+# Anyone on the bus sees it: the supervisor's report counts the restart and says why.
+supervisor() { "$BIN/nerv_up" --status --listen 1.5 2>/dev/null | grep "^nerv_up/$host " || true; }
+wait_until 10 bash -c "$(declare -f supervisor); BIN='$BIN' host='$host' supervisor | grep -q 'errors 1 .*last: validator/0 (pid $victim) killed by signal 9 (hung)'" \
+  || fail "nerv_up's report does not show the restart: $(supervisor)"
+pass "nerv_up's own report: $(supervisor | sed 's/  */ /g')"
 stop_children
 no_survivors || fail "processes survived"
 echo "2 passed, 0 failed"

@@ -13,7 +13,11 @@
 // restart_backoff_max_s (and resets once it has run for 30 s). A service whose
 // own NERV_HEALTH stops for run.watchdog_s (10 s; 0 = off), or that sends none
 // within run.watchdog_startup_s (30 s) of its start, is hung: it is killed
-// (SIGKILL) and restarted the same way (service_watchdog.hpp). A status line
+// (SIGKILL) and restarted the same way (service_watchdog.hpp). nerv_up reports
+// on NERV_HEALTH itself (service "nerv_up", instance = host), once a second and
+// at every restart: errors = restarts so far, a counter per restarted service,
+// the last restart as last_error, so a log shows when and why a stage was
+// missing. A status line
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
 // every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
 #include <signal.h>
@@ -53,6 +57,7 @@ struct Child {
   std::vector<std::string> argv;
   pid_t pid = -1;
   int restarts = 0;
+  int hangs = 0;  // of the restarts, after the watchdog killed it
   double backoff_s = 0;
   ServiceWatchdog watchdog;
   bool hung = false;  // killed by the watchdog, not yet reaped
@@ -101,6 +106,37 @@ struct HealthBoard {
     }
   }
 };
+
+// The supervisor's own report: how often each child was restarted and why the last time.
+void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const std::string& host,
+                             const std::vector<Child>& children, const std::string& last_event,
+                             bool restarted_since_last) {
+  health_t h;
+  h.utime = nowUtime();
+  h.service = "nerv_up";
+  h.instance = host;
+  h.host = host;
+  h.pid = static_cast<int32_t>(getpid());
+  h.frames_in = h.frames_out = h.frames_dropped = 0;
+  h.errors = 0;
+  bool all_running = true;
+  for (const Child& c : children) {
+    h.errors += c.restarts;
+    all_running = all_running && c.pid > 0;
+    if (c.restarts == 0) continue;
+    h.counter_names.push_back("restarts_" + c.service + "/" + c.instance);
+    h.counter_values.push_back(c.restarts);
+    if (c.hangs == 0) continue;
+    h.counter_names.push_back("hung_" + c.service + "/" + c.instance);
+    h.counter_values.push_back(c.hangs);
+  }
+  h.num_counters = static_cast<int32_t>(h.counter_names.size());
+  h.latency_p50_ms = h.latency_p95_ms = h.processing_ms = 0;
+  // degraded: a service is down (waiting for its restart) or was restarted since the last report.
+  h.status = all_running && !restarted_since_last ? "ok" : "degraded";
+  h.last_error = last_event;
+  lcm.publish(channel, &h);
+}
 
 pid_t spawn(const Child& c) {
   const pid_t pid = fork();
@@ -212,6 +248,9 @@ int up(const Options& flags) {
   }
   auto last_print = Clock::now();
   auto last_activity = Clock::now();
+  auto last_report = Clock::now() - std::chrono::seconds(1);
+  std::string last_event;
+  bool event_since_report = false;
   while (!g_stop) {
     lcm.handleTimeout(50);
     for (auto& c : children) {
@@ -220,10 +259,15 @@ int up(const Options& flags) {
         if (waitpid(c.pid, &wstatus, WNOHANG) == c.pid) {
           const double ran = std::chrono::duration<double>(Clock::now() - c.started).count();
           if (ran > 30) c.backoff_s = backoff0;
-          std::fprintf(stderr, "nerv_up: %s/%s (pid %d) %s %d%s; restart in %.1f s\n", c.service.c_str(),
-                       c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
-                       WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
-                       c.hung ? " (hung)" : "", c.backoff_s);
+          char event[256];
+          std::snprintf(event, sizeof event, "%s/%s (pid %d) %s %d%s; restart in %.1f s", c.service.c_str(),
+                        c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
+                        WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
+                        c.hung ? " (hung)" : "", c.backoff_s);
+          std::fprintf(stderr, "nerv_up: %s\n", event);
+          last_event = event;
+          event_since_report = true;
+          if (c.hung) ++c.hangs;
           c.pid = -1;
           c.hung = false;
           c.restart_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(c.backoff_s));
@@ -250,10 +294,17 @@ int up(const Options& flags) {
         ++c.restarts;
         std::fprintf(stderr, "nerv_up: restarted %s/%s (pid %d, restart %d)\n", c.service.c_str(),
                      c.instance.c_str(), c.pid, c.restarts);
+        event_since_report = true;
       }
     }
+    // Once a second, and at once when a service went down or came back.
+    if (event_since_report || Clock::now() - last_report >= std::chrono::seconds(1)) {
+      publishSupervisorHealth(lcm, o.prefix + "NERV_HEALTH", board.host, children, last_event, event_since_report);
+      last_report = Clock::now();
+      event_since_report = false;
+    }
     for (const auto& [k, h] : board.last)
-      if (h.status == "ok") last_activity = std::max(last_activity, board.seen[k]);
+      if (h.status == "ok" && h.service != "nerv_up") last_activity = std::max(last_activity, board.seen[k]);
     if (!o.quiet && Clock::now() - last_print > std::chrono::seconds(1)) {
       std::fprintf(stderr, "---\n");
       board.print(stderr);
