@@ -4,8 +4,10 @@
 #   host1 (camera):     source + stereo_matcher
 #   host2 (perception): stixel + snv_extrinsic
 #   host3 (planner):    validator + lcm-logger
-# Every frame must come out detected and logged. All traffic stays inside the
-# namespaces this test creates.
+# Every frame must come out detected and logged. Then the perception computer's
+# link goes down for a second (a loose connector, a switch restarting): the
+# services keep running and the next frames cross again. All traffic stays inside
+# the namespaces this test creates.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 command -v ip >/dev/null || { echo "SKIP: iproute2 missing"; exit 77; }
@@ -54,15 +56,35 @@ on 1 "$BIN/nerv_source" --data "$data" --rate 5 --lcm-url "$URL2" --drain-timeou
   --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source.log" \
   || { cat "$tmp"/*.log; fail "not every frame came out as DETECTIONS across hosts"; }
 pass "$(tail -n1 "$tmp/source.log")"
+
+# host2's link down and up again; the kernel drops its multicast route with the link,
+# so it comes back as a network manager would bring it back.
+on 2 ip link set eth0 down
+sleep 1
+on 2 ip link set eth0 up multicast on
+on 2 ip route add 224.0.0.0/4 dev eth0
+on 1 "$BIN/nerv_source" --data "$data" --rate 5 --lcm-url "$URL2" --drain-timeout 20 \
+  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" \
+  || { cat "$tmp"/*.log; fail "after host2's link came back, not every frame came out as DETECTIONS"; }
+for svc in stixel snv_extrinsic; do
+  pgrep -f "^$BIN/$svc " >/dev/null || fail "$svc on host2 did not survive its link going down"
+done
+pass "host2's link down for 1 s and up again: the same services detect the next 6 frames too"
 sleep 0.3
 stop_children
 
 "$BIN/nerv_export" "$tmp/nerv.lcmlog" --summary "$tmp/summary.json" >/dev/null
 grep -q '"frames_in":6' "$tmp/summary.json" && grep -q '"frames_out":6' "$tmp/summary.json" \
   || fail "the logger on host3 did not record all 6 frames: $(head -c 300 "$tmp/summary.json")"
-"$BIN/nerv_export" "$tmp/nerv.lcmlog" --json --no-blobs | grep '"channel":"NERV_HEALTH"' >"$tmp/health.jsonl" || true
+# Both runs of the 6 frames (the summary counts each seq once).
+"$BIN/nerv_export" "$tmp/nerv.lcmlog" --json --no-blobs >"$tmp/all.jsonl"
+for ch in STEREO_FRAME DETECTIONS; do
+  n=$(grep -c "\"channel\":\"$ch\"" "$tmp/all.jsonl" || true)
+  [[ "$n" -eq 12 ]] || fail "host3's logger recorded $n $ch messages, expected 12 (two runs of 6)"
+done
+grep '"channel":"NERV_HEALTH"' "$tmp/all.jsonl" >"$tmp/health.jsonl" || true
 for s in stereo_matcher stixel snv_extrinsic validator; do
   grep -q "\"service\":\"$s\"" "$tmp/health.jsonl" || fail "no health from $s in the log"
 done
-pass "host3's lcm-logger recorded all 6 frames and every service's health"
-echo "1 passed, 0 failed"
+pass "host3's lcm-logger recorded all 12 frames and every service's health"
+echo "3 passed, 0 failed"
