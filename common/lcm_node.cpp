@@ -50,6 +50,7 @@ Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
   host_ = host;
+  lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(10);
   struct sigaction sa {};
   sa.sa_handler = onSignal;
   sigaction(SIGINT, &sa, nullptr);
@@ -110,6 +111,22 @@ void Node::noteSeq(const std::string& channel, int64_t seq) {
     countDropped(lost);
     count("lost_" + channel, lost);
   }
+}
+
+void Node::onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  health_t h;
+  try {  // a corrupt array length makes the generated decoder throw
+    if (h.decode(rbuf->data, 0, rbuf->data_size) < 0) return;
+  } catch (const std::exception&) {
+    return;
+  }
+  if (h.service != options_.service || h.instance != options_.instance) return;
+  if (h.host == host_ && h.pid == static_cast<int32_t>(getpid())) return;  // this process
+  if (!twins_.insert(h.host + " " + std::to_string(h.pid)).second) return;
+  error("duplicate_instance", "another " + h.service + "/" + h.instance + " runs on host " + h.host +
+                                  ", pid " + std::to_string(h.pid) +
+                                  ": each of its frames is processed twice (stop one, or give them other "
+                                  "--shard or --prefix)");
 }
 
 void Node::guarded(const std::function<void()>& body) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -110,6 +111,11 @@ class Node {
   void noteSeq(const std::string& channel, int64_t seq);
   std::map<std::string, SeqGapTracker> seq_gaps_;
   void publishHealth();
+  // Another process reporting this service and instance on the bus (a stage started
+  // by hand beside a supervisor's, a second supervisor): every frame it owns is then
+  // processed and published twice. One error per such process.
+  void onHealth(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  std::set<std::string> twins_;  // "host pid" of each one seen
 
   NodeOptions options_;
   lcm::LCM lcm_;
