@@ -1,0 +1,51 @@
+# `cmake --install build [--prefix P]`: what a vehicle computer needs to run nerv
+# (README "Installing on a vehicle computer"):
+#   bin/                      the four services, nerv_up, nerv_source and the log tools
+#   share/nerv/config/        pipeline.yaml, the camera presets, the synthetic scenes
+#   share/nerv/lcmtypes/      the message definitions, for clients in other languages
+#   share/nerv/nerv_types.jar the Java types (lcm-spy, Java clients), when built
+#   etc/nerv/pipeline.yaml    the config the systemd unit reads; installed only when absent
+#   lib/systemd/system/nerv.service, lib/sysctl.d/60-nerv-lcm.conf
+# nerv_up finds the services next to itself, so bin/ must hold them all.
+include(GNUInstallDirs)
+
+set(NERV_INSTALL_TARGETS
+    nerv_stereo_matcher_service nerv_stixel_service nerv_snv_extrinsic_service nerv_validator_service
+    nerv_up nerv_source nerv_export nerv_diff nerv_render nerv_report nerv_eval_detections
+    nerv_eval_disparity nerv_unrectify nerv_synth_cli)
+foreach(target ${NERV_INSTALL_TARGETS})
+  if(TARGET ${target})
+    install(TARGETS ${target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
+endforeach()
+
+set(NERV_SHARE ${CMAKE_INSTALL_DATADIR}/nerv)
+install(FILES ${CMAKE_SOURCE_DIR}/config/pipeline.yaml DESTINATION ${NERV_SHARE}/config)
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/config/cameras ${CMAKE_SOURCE_DIR}/config/scenes
+        DESTINATION ${NERV_SHARE}/config)
+install(FILES ${NERV_LCM_TYPES} DESTINATION ${NERV_SHARE}/lcmtypes)
+if(NERV_TYPES_JAR)
+  install(FILES ${NERV_TYPES_JAR} DESTINATION ${NERV_SHARE})
+endif()
+
+# The unit and the config it names refer to the installed paths (the prefix given at install).
+install(CODE "
+  set(prefix \"\${CMAKE_INSTALL_PREFIX}\")
+  set(NERV_BINDIR \"\${prefix}/${CMAKE_INSTALL_BINDIR}\")
+  if(IS_ABSOLUTE \"${CMAKE_INSTALL_SYSCONFDIR}\")
+    set(etc \"${CMAKE_INSTALL_SYSCONFDIR}\")
+  else()
+    set(etc \"\${prefix}/${CMAKE_INSTALL_SYSCONFDIR}\")
+  endif()
+  set(NERV_CONFIG \"\${etc}/nerv/pipeline.yaml\")
+  configure_file(\"${CMAKE_SOURCE_DIR}/deploy/nerv.service.in\" \"${CMAKE_BINARY_DIR}/deploy/nerv.service\" @ONLY)
+  file(INSTALL \"${CMAKE_BINARY_DIR}/deploy/nerv.service\"
+       DESTINATION \"\$ENV{DESTDIR}\${prefix}/lib/systemd/system\")
+  file(INSTALL \"${CMAKE_SOURCE_DIR}/deploy/60-nerv-lcm.conf\"
+       DESTINATION \"\$ENV{DESTDIR}\${prefix}/lib/sysctl.d\")
+  if(EXISTS \"\$ENV{DESTDIR}\${NERV_CONFIG}\")
+    message(STATUS \"Kept: \$ENV{DESTDIR}\${NERV_CONFIG} (already there)\")
+  else()
+    file(INSTALL \"${CMAKE_SOURCE_DIR}/config/pipeline.yaml\" DESTINATION \"\$ENV{DESTDIR}\${etc}/nerv\")
+  endif()
+")
