@@ -36,6 +36,14 @@ class SeqJoin {
       }
     }
   }
+  // Expires every pending entry now, oldest first (its partner is known not to come).
+  void expireAll() {
+    while (!pending_.empty()) {
+      Entry e = std::move(pending_.begin()->second);
+      pending_.erase(pending_.begin());
+      on_expired_(e.a, e.b);
+    }
+  }
   size_t pending() const { return pending_.size(); }
 
  private:

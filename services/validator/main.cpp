@@ -1,9 +1,13 @@
 // validator service: STIXELS + SURFACE_NORMALS (joined by seq) -> DETECTIONS.
 // A STIXELS frame whose normals never come is still published, every
-// hypothesis marked "unvalidated", so no frame disappears downstream.
+// hypothesis marked "unvalidated", so no frame disappears downstream. While
+// snv_extrinsic is down (two frames expired without normals and none came since),
+// frames are published at once instead of after join_timeout_ms each
+// (partner_presence.hpp), until normals come again.
 #include <chrono>
 
 #include "message_convert.hpp"
+#include "partner_presence.hpp"
 #include "seq_join.hpp"
 #include "service_config.hpp"
 #include "validator.hpp"
@@ -47,6 +51,9 @@ int serve(ServiceConfig& config) {
     node.countOut(smsg.header.utime, out.processing_ms);
   };
 
+  // Two frames in a row: a single lost SURFACE_NORMALS message is not snv_extrinsic being down
+  // (with one, the frame or two then in flight would go out unvalidated as well).
+  PartnerPresence normals(2);
   SeqJoin<stixels_t, surface_normals_t> join(
       join_settings.capacity, join_settings.timeout_us,
       [&](const stixels_t& s, const surface_normals_t& n) { publish(s, &n); },
@@ -54,6 +61,7 @@ int serve(ServiceConfig& config) {
         if (s) {
           node.error("missing_normals", "frame " + std::to_string(s->header.seq) +
                                             ": no SURFACE_NORMALS, hypotheses unvalidated");
+          normals.missed();
           publish(*s, nullptr);
         } else {
           node.countDropped();
@@ -66,15 +74,27 @@ int serve(ServiceConfig& config) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkStixels(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    if (normals.goesAlone(msg.header.seq)) {  // snv_extrinsic is down: no use waiting
+      node.error("missing_normals", "frame " + std::to_string(msg.header.seq) +
+                                        ": no SURFACE_NORMALS coming, hypotheses unvalidated at once");
+      node.count("published_without_waiting");
+      return publish(msg, nullptr);
+    }
     join.pushA(msg.header.seq, msg, nowUtime());
   }, join_settings.queue);
   node.subscribe<surface_normals_t>("SURFACE_NORMALS", [&](const surface_normals_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkSurfaceNormals(msg))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
+    // Normals for a frame already published alone are late: counted, not joined again.
+    if (!normals.arrived(msg.header.seq)) return node.count("late_normals");
     join.pushB(msg.header.seq, msg, nowUtime());
   }, join_settings.queue);
-  node.onTick([&] { join.expire(nowUtime()); });
+  node.onTick([&] {
+    join.expire(nowUtime());
+    // Once normals are absent, the frames already waiting for theirs go out now too.
+    if (normals.absent()) join.expireAll();
+  });
   return node.spin();
 }
 

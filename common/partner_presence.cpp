@@ -1,0 +1,20 @@
+#include "partner_presence.hpp"
+
+namespace nerv {
+
+bool PartnerPresence::arrived(int64_t seq) {
+  missed_in_a_row_ = 0;
+  return sent_alone_.erase(seq) == 0;
+}
+
+bool PartnerPresence::goesAlone(int64_t seq) {
+  if (!absent()) {
+    sent_alone_.erase(seq);
+    return false;
+  }
+  sent_alone_.insert(seq);
+  while (sent_alone_.size() > kMemory) sent_alone_.erase(sent_alone_.begin());
+  return true;
+}
+
+}  // namespace nerv

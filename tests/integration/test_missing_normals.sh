@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# snv_extrinsic down: the validator publishes every frame's hypotheses as "unvalidated", and
+# once two frames in a row went without normals it does so at once instead of waiting for each
+# frame's (join_timeout_ms, 2 s, or until join_capacity newer frames wait: 0.8 s at 10 Hz).
+# When snv_extrinsic is back, frames are validated again from the first whose STIXELS come
+# after normals did (before that, frames go out alone), also when the source restarted its count.
+source "$(dirname "$0")/lib.sh"
+enter_private_bus "$@"
+tmp=$(mktemp -d)
+trap 'stop_children; rm -rf "$tmp"' EXIT
+data=$(synthetic_sequence urban 20)
+start_child "$tmp/logger.log" lcm-logger --lcm-url="$URL" -f -q "$tmp/run.lcmlog"
+start_child "$tmp/up.log" "$BIN/nerv_up" --config "$NERV_ROOT/config/pipeline.yaml" --lcm-url "$URL" \
+  --services stereo_matcher,stixel,validator --quiet
+"$BIN/nerv_source" --data "$data" --repeat 2 --rate 10 --lcm-url "$URL" --drain-timeout 20 \
+  --wait-for stereo_matcher,stixel,validator 2>"$tmp/source1.log" \
+  || fail "without snv_extrinsic not every frame came out: $(tail -c 300 "$tmp/source1.log")"
+resumed_us=$(( $(date +%s%N) / 1000 ))
+start_child "$tmp/snv.log" "$BIN/snv_extrinsic" --lcm-url "$URL"
+"$BIN/nerv_source" --data "$data" --rate 10 --frames 10 --lcm-url "$URL" --drain-timeout 20 \
+  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" \
+  || fail "with snv_extrinsic back not every frame came out: $(tail -c 300 "$tmp/source2.log")"
+sleep 0.3
+stop_children
+
+# One line per DETECTIONS: received [us], seq, capture [us], unvalidated, validated.
+"$BIN/nerv_export" "$tmp/run.lcmlog" --json --no-blobs | grep '"channel":"DETECTIONS"' | awk '
+  { ev = $0; sub(/.*"channel":"DETECTIONS","utime":/, "", ev); sub(/[^0-9].*/, "", ev)
+    h = $0; sub(/.*"header":\{"seq":/, "", h); split(h, f, /[^0-9]+/)
+    un = gsub(/"label":"unvalidated"/, "&"); va = gsub(/"label":"(object|ground|error)"/, "&")
+    print ev, f[1], f[2], un, va }' >"$tmp/det.txt"
+awk -v r="$resumed_us" '$1 < r' "$tmp/det.txt" >"$tmp/down.txt"
+awk -v r="$resumed_us" '$1 >= r' "$tmp/det.txt" >"$tmp/back.txt"
+[[ $(wc -l <"$tmp/down.txt") -eq 40 ]] || fail "$(wc -l <"$tmp/down.txt") DETECTIONS while snv_extrinsic was down, expected 40"
+awk '$5 > 0 { bad = 1 } END { exit bad }' "$tmp/down.txt" || fail "a hypothesis was validated without normals"
+# Frames captured 3 s after the first (at most 2 s of waiting, then the switch) come out at once.
+read -r n worst <<<"$(awk 'NR == 1 { t0 = $3 } $3 - t0 >= 3000000 { n++; l = ($1 - $3) / 1000; if (l > w) w = l }
+                          END { printf "%d %.0f", n, w }' "$tmp/down.txt")"
+((n >= 5)) || fail "only $n frames after the switch"
+((worst < 1000)) || fail "with snv_extrinsic down, frames still came out up to $worst ms after capture"
+first=$(awk 'NR == 1 { printf "%.0f", ($1 - $3) / 1000 }' "$tmp/down.txt")
+pass "snv_extrinsic down: 40 of 40 frames out, all unvalidated; the first after $first ms (waiting for its normals), the $n from 3 s on within $worst ms"
+
+[[ $(wc -l <"$tmp/back.txt") -eq 10 ]] || fail "$(wc -l <"$tmp/back.txt") DETECTIONS after snv_extrinsic came back, expected 10"
+# Alone until normals come, then validated: never alone again after a validated frame.
+awk '$5 > 0 { seen = 1 } seen && $5 == 0 { bad = 1 } END { exit bad || !seen }' "$tmp/back.txt" \
+  || fail "validation did not resume for good after snv_extrinsic came back: $(cat "$tmp/back.txt")"
+alone=$(awk '$5 == 0' "$tmp/back.txt" | wc -l)
+((alone <= 3)) || fail "$alone frames went out alone after snv_extrinsic came back"
+if grep -q "missing_stixels" "$tmp/up.log"; then fail "normals taken for frames without STIXELS: $(grep missing_stixels "$tmp/up.log" | head -3)"; fi
+pass "snv_extrinsic back, source counting from 0 again: the first $alone frame(s) unvalidated, then all validated ($((10 - alone)) of 10)"
+no_survivors || fail "processes survived"
+echo "2 passed, 0 failed"

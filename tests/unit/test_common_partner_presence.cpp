@@ -1,0 +1,82 @@
+// PartnerPresence (partner_presence.hpp): absent after the given number of frames in a
+// row expired without their partner, present again with the next partner message,
+// and a partner for a frame already sent alone is recognised as late, once.
+#include <gtest/gtest.h>
+
+#include "partner_presence.hpp"
+#include "seq_join.hpp"
+
+#include <optional>
+#include <vector>
+
+using namespace nerv;
+
+TEST(commonPartnerPresence, AbsentAfterFramesInARowWithoutPartner) {
+  PartnerPresence p(2);
+  EXPECT_FALSE(p.absent());
+  p.missed();
+  EXPECT_FALSE(p.absent()) << "one lost message is not a stage down";
+  EXPECT_TRUE(p.arrived(5));
+  p.missed();
+  EXPECT_FALSE(p.absent()) << "an arrival in between starts the count again";
+  p.missed();
+  EXPECT_TRUE(p.absent());
+  EXPECT_TRUE(p.arrived(9));
+  EXPECT_FALSE(p.absent()) << "present again with the next partner message";
+}
+
+TEST(commonPartnerPresence, FramesWaitUntilThePartnerIsAbsent) {
+  PartnerPresence p(1);
+  EXPECT_FALSE(p.goesAlone(1));
+  p.missed();
+  EXPECT_TRUE(p.goesAlone(2));
+  EXPECT_TRUE(p.goesAlone(3));
+  EXPECT_TRUE(p.arrived(4));
+  EXPECT_FALSE(p.goesAlone(5)) << "the partner is back: wait for it again";
+}
+
+TEST(commonPartnerPresence, APartnerForAFrameSentAloneIsLateOnce) {
+  PartnerPresence p(1);
+  p.missed();
+  ASSERT_TRUE(p.absent());
+  ASSERT_TRUE(p.goesAlone(10));
+  ASSERT_TRUE(p.goesAlone(11));
+  EXPECT_FALSE(p.arrived(10)) << "frame 10 went out alone already";
+  EXPECT_FALSE(p.absent());
+  EXPECT_TRUE(p.arrived(10)) << "only once";
+  EXPECT_FALSE(p.arrived(11));
+  EXPECT_TRUE(p.arrived(12));
+}
+
+TEST(commonPartnerPresence, ARestartedCountIsANewFrameNotALatePartner) {
+  PartnerPresence p(1);
+  p.missed();
+  ASSERT_TRUE(p.goesAlone(3));  // frame 3 of the first drive, alone
+  EXPECT_TRUE(p.arrived(20));   // the partner is back
+  EXPECT_FALSE(p.goesAlone(3)); // the source restarted: a new frame 3 waits for its partner
+  EXPECT_TRUE(p.arrived(3)) << "and its partner joins it, not taken for late";
+}
+
+TEST(commonPartnerPresence, RemembersOnlyTheLatestFramesSentAlone) {
+  PartnerPresence p(1);
+  p.missed();
+  for (int64_t s = 0; s < 1000; ++s) ASSERT_TRUE(p.goesAlone(s));
+  EXPECT_TRUE(p.arrived(0)) << "forgotten: memory stays bounded";
+  EXPECT_FALSE(p.arrived(999));
+}
+
+TEST(commonSeqJoin, ExpireAllHandsOverEveryPendingEntryOldestFirst) {
+  std::vector<int> expired, matched;
+  SeqJoin<int, int> join(
+      16, 1000000, [&](const int& a, const int&) { matched.push_back(a); },
+      [&](const std::optional<int>& a, const std::optional<int>& b) { expired.push_back(a ? *a : -*b); });
+  join.pushA(3, 3, 0);
+  join.pushA(1, 1, 0);
+  join.pushB(2, 2, 0);
+  join.pushA(4, 4, 0);
+  join.pushB(4, 4, 0);
+  EXPECT_EQ(matched, std::vector<int>({4}));
+  join.expireAll();
+  EXPECT_EQ(expired, std::vector<int>({1, -2, 3}));
+  EXPECT_EQ(join.pending(), 0u);
+}
