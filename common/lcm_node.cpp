@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "build_version.hpp"
 #include "nerv/health_t.hpp"
 
 namespace nerv {
@@ -51,6 +52,7 @@ Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(
   gethostname(host, sizeof host - 1);
   host_ = host;
   lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(10);
+  std::fprintf(stderr, "%s: nerv %s\n", options_.service.c_str(), buildVersion());
   struct sigaction sa {};
   sa.sa_handler = onSignal;
   sigaction(SIGINT, &sa, nullptr);
@@ -164,6 +166,7 @@ void Node::publishHealth() {
   h.status = errors_ > errors_at_last_health_ ? "degraded" : (processing_ms_.empty() ? "idle" : "ok");
   errors_at_last_health_ = errors_;
   h.last_error = last_error_;
+  h.version = buildVersion();
   latencies_ms_.clear();
   processing_ms_.clear();
   lcm_.publish(channel("NERV_HEALTH"), &h);

@@ -1,5 +1,7 @@
 #include "service_config.hpp"
 
+#include "build_version.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +18,7 @@ struct Flags {
   std::string config, instance, lcm_url, prefix, shard;
   bool has_prefix = false;
   bool check_only = false;
+  bool version = false;
 };
 
 Flags parseFlags(int argc, char** argv) {
@@ -32,10 +35,11 @@ Flags parseFlags(int argc, char** argv) {
     else if (arg == "--prefix") { f.prefix = value("--prefix"); f.has_prefix = true; }
     else if (arg == "--shard") f.shard = value("--shard");
     else if (arg == "--check-config") f.check_only = true;
+    else if (arg == "--version") f.version = true;
     else
       throw ConfigError("unknown flag '" + arg +
                         "' (flags: --config FILE --instance NAME --lcm-url URL --prefix P "
-                        "--shard K/N --check-config)");
+                        "--shard K/N --check-config --version)");
   }
   return f;
 }
@@ -128,6 +132,10 @@ JoinSettings readJoinSettings(ConfigSection& section, int default_queue) {
 int runService(const std::string& service, int argc, char** argv,
                const std::function<int(ServiceConfig&)>& body) {
   try {
+    if (parseFlags(argc, argv).version) {
+      std::printf("%s: nerv %s\n", service.c_str(), buildVersion());
+      return 0;
+    }
     ServiceConfig config(service, argc, argv);
     return body(config);
   } catch (const ConfigError& e) {

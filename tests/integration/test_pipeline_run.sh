@@ -42,6 +42,18 @@ for s in "${SERVICES[@]}" source; do
 done
 pass "every service published NERV_HEALTH"
 
+# Which build made the log: every process's health names the build its binary prints.
+build=$("$BIN/stixel" --version | sed 's/^stixel: nerv //')
+[[ "$build" =~ ^[0-9]+\.[0-9]+\.[0-9]+\ \(.+\)$ ]] || fail "stixel --version printed '$build'"
+for s in "${SERVICES[@]}" source nerv_up; do
+  binary=$s; [[ $s == source ]] && binary=nerv_source
+  [[ "$("$BIN/$binary" --version)" == "$binary: nerv $build" ]] || fail "$binary --version: $("$BIN/$binary" --version)"
+  grep "\"service\":\"$s\"" "$out/health.jsonl" | grep -qF "\"version\":\"$build\"" \
+    || fail "$s's health does not name the build $build: $(grep "\"service\":\"$s\"" "$out/health.jsonl" | tail -n1)"
+done
+grep -qF "\"version\":\"$build\"" "$out/summary.json" || fail "the summary does not name the build"
+pass "every process reports the build nerv $build in its health, as --version prints it"
+
 grep -q '"frames_in":6' "$out/summary.json" && grep -q '"frames_out":6' "$out/summary.json" \
   || fail "summary does not count 6 frames in and out: $(head -c 300 "$out/summary.json")"
 # the latency breakdown covers every stage on every frame

@@ -163,6 +163,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.field("frames_dropped", h.frames_dropped);
     j.field("errors", h.errors);
     j.field("last_error", h.last_error);
+    j.field("version", h.version);
     j.endObject();
   }
   j.endObject();
@@ -220,13 +221,16 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       }
       t += "\n";
     }
+    std::map<std::string, int> builds;  // which builds produced the log
     for (const auto& [name, h] : last_health) {
       std::snprintf(buf, sizeof buf, "health %-22s in %lld out %lld dropped %lld errors %lld%s%s\n",
                     name.c_str(), (long long)h.frames_in, (long long)h.frames_out,
                     (long long)h.frames_dropped, (long long)h.errors,
                     h.last_error.empty() ? "" : "  last: ", h.last_error.c_str());
       t += buf;
+      ++builds[h.version.empty() ? "unknown" : h.version];
     }
+    for (const auto& [version, n] : builds) t += "build nerv " + version + ": " + std::to_string(n) + " processes\n";
     *text_report = t;
   }
   return j.str();

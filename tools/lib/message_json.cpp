@@ -278,6 +278,7 @@ void write(JsonWriter& j, const health_t& m) {
   j.field("processing_ms", m.processing_ms);
   j.field("status", m.status);
   j.field("last_error", m.last_error);
+  j.field("version", m.version);
   j.endObject();
 }
 

@@ -22,6 +22,7 @@
 #include "lcm_node.hpp"
 #include "message_convert.hpp"
 #include "nerv/detections_t.hpp"
+#include "build_version.hpp"
 #include "nerv/health_t.hpp"
 
 using namespace nerv;
@@ -38,6 +39,7 @@ struct Options {
   std::set<std::string> wait_for;
   bool wait_detections = true;
   bool check_only = false;
+  bool version = false;  // --version: print the build and exit
 };
 
 Options parse(int argc, char** argv) {
@@ -71,12 +73,14 @@ Options parse(int argc, char** argv) {
     else if (a == "--prefix") o.prefix = value();
     else if (a == "--no-wait") o.wait_detections = false;
     else if (a == "--check") o.check_only = true;
+    else if (a == "--version") o.version = true;
     else if (a == "--wait-for") {
       std::stringstream list(value());
       for (std::string s; std::getline(list, s, ',');)
         if (!s.empty()) o.wait_for.insert(s);
     } else throw std::runtime_error("unknown flag '" + a + "'");
   }
+  if (o.version) return o;
   if (o.data.empty() && o.max_frames != 0) throw std::runtime_error("--data DIR is required");
   if (o.rate_hz < 0) throw std::runtime_error("--rate must be >= 0");
   if (o.in_flight < 1) throw std::runtime_error("--in-flight must be >= 1");
@@ -198,7 +202,9 @@ int play(const Options& o) {
 
 int main(int argc, char** argv) {
   try {
-    return play(parse(argc, argv));
+    const Options o = parse(argc, argv);
+    if (o.version) return std::printf("nerv_source: nerv %s\n", buildVersion()), 0;
+    return play(o);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_source: %s\n", e.what());
     return 2;

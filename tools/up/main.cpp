@@ -36,6 +36,7 @@
 #include <thread>
 #include <vector>
 
+#include "build_version.hpp"
 #include "config.hpp"
 #include "pipeline_keys.hpp"
 #include "lcm_node.hpp"
@@ -105,6 +106,18 @@ struct HealthBoard {
                    h.last_error.c_str());
     }
   }
+  // The builds heard: one line naming each when they differ (always with `always`).
+  void printBuilds(FILE* out, bool always) const {
+    std::map<std::string, std::string> who;  // version -> "service/instance ..."
+    for (const auto& [key, h] : last) who[h.version.empty() ? "unknown" : h.version] += " " + key;
+    if (who.size() > 1) {
+      std::fprintf(out, "builds differ:");
+      for (const auto& [version, keys] : who) std::fprintf(out, "  nerv %s:%s;", version.c_str(), keys.c_str());
+      std::fprintf(out, "\n");
+    } else if (always && !who.empty()) {
+      std::fprintf(out, "build: nerv %s on all %zu\n", who.begin()->first.c_str(), last.size());
+    }
+  }
 };
 
 // The supervisor's own report: how often each child was restarted and why the last time.
@@ -135,6 +148,7 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
   // degraded: a service is down (waiting for its restart) or was restarted since the last report.
   h.status = all_running && !restarted_since_last ? "ok" : "degraded";
   h.last_error = last_event;
+  h.version = buildVersion();
   lcm.publish(channel, &h);
 }
 
@@ -165,6 +179,7 @@ int status(const Options& o) {
     return 1;
   }
   board.print(stdout);
+  board.printBuilds(stdout, true);
   return 0;
 }
 
@@ -239,6 +254,7 @@ int up(const Options& flags) {
   board.host = host;
   lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
 
+  std::fprintf(stderr, "nerv_up: nerv %s\n", buildVersion());
   for (auto& c : children) {
     c.pid = spawn(c);
     c.started = Clock::now();
@@ -308,6 +324,7 @@ int up(const Options& flags) {
     if (!o.quiet && Clock::now() - last_print > std::chrono::seconds(1)) {
       std::fprintf(stderr, "---\n");
       board.print(stderr);
+      board.printBuilds(stderr, false);
       last_print = Clock::now();
     }
     if (o.exit_when_idle_s > 0 &&
@@ -351,6 +368,7 @@ int main(int argc, char** argv) {
       else if (a == "--listen") o.listen_s = std::stod(value());
       else if (a == "--quiet") o.quiet = true;
       else if (a == "--list") o.list_only = true;
+      else if (a == "--version") return std::printf("nerv_up: nerv %s\n", buildVersion()), 0;
       else if (a == "--exit-when-idle") o.exit_when_idle_s = std::stod(value());
       else throw std::runtime_error("unknown flag '" + a + "'");
     }
