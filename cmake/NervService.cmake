@@ -14,6 +14,6 @@ function(nerv_service name)
     add_executable(nerv_${name}_service main.cpp)
     set_target_properties(nerv_${name}_service PROPERTIES OUTPUT_NAME ${name}
                           RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bin)
-    target_link_libraries(nerv_${name}_service PRIVATE nerv_${name} nerv_transport)
+    target_link_libraries(nerv_${name}_service PRIVATE nerv_${name} nerv_transport nerv_build_version)
   endif()
 endfunction()
