@@ -12,9 +12,13 @@ bool PartnerPresence::goesAlone(int64_t seq) {
     sent_alone_.erase(seq);
     return false;
   }
+  wentAlone(seq);
+  return true;
+}
+
+void PartnerPresence::wentAlone(int64_t seq) {
   sent_alone_.insert(seq);
   while (sent_alone_.size() > kMemory) sent_alone_.erase(sent_alone_.begin());
-  return true;
 }
 
 }  // namespace nerv

@@ -30,6 +30,9 @@ class PartnerPresence {
   // waits for its partner as usual, and an older note on its seq (a source that
   // restarted its count) is forgotten.
   bool goesAlone(int64_t seq);
+  // A frame went on alone after waiting for its partner in vain (an expired join): its
+  // partner, should it come after all, is late.
+  void wentAlone(int64_t seq);
 
  private:
   int absent_after_;

@@ -62,6 +62,7 @@ int serve(ServiceConfig& config) {
           node.error("missing_normals", "frame " + std::to_string(s->header.seq) +
                                             ": no SURFACE_NORMALS, hypotheses unvalidated");
           normals.missed();
+          normals.wentAlone(s->header.seq);
           publish(*s, nullptr);
         } else {
           node.countDropped();

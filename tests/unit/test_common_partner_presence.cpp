@@ -57,6 +57,15 @@ TEST(commonPartnerPresence, ARestartedCountIsANewFrameNotALatePartner) {
   EXPECT_TRUE(p.arrived(3)) << "and its partner joins it, not taken for late";
 }
 
+TEST(commonPartnerPresence, APartnerAfterItsFrameExpiredIsLate) {
+  PartnerPresence p(2);
+  p.missed();
+  p.wentAlone(7);  // waited in vain, went on alone
+  EXPECT_FALSE(p.absent());
+  EXPECT_FALSE(p.arrived(7)) << "it came after all: late, not a new join";
+  EXPECT_TRUE(p.arrived(8));
+}
+
 TEST(commonPartnerPresence, RemembersOnlyTheLatestFramesSentAlone) {
   PartnerPresence p(1);
   p.missed();
