@@ -77,3 +77,29 @@ best_kept_iou() {
       if (iou > best) best = iou }
     END { printf "%.2f", best }'
 }
+
+# stage_down_and_back STAGE WAIT_FLAG DIR: the pipeline without STAGE on 40 frames of the
+# urban scene at 10 Hz (the source with WAIT_FLAG: --drain-timeout 20 when DETECTIONS must
+# come, --no-wait when they cannot), then STAGE started by hand and 10 more frames (the
+# source counting from 0 again) that must all come out as DETECTIONS. Everything on the bus
+# is logged to DIR/run.lcmlog; STAGE_BACK_US is the time [us] at which STAGE came back.
+# (Not in a subshell: the children stay in CHILDREN for the caller's trap.)
+stage_down_and_back() {
+  local stage=$1 wait_flag=$2 dir=$3 data others
+  data=$(synthetic_sequence urban 20)
+  others=$(IFS=,; for s in "${SERVICES[@]}"; do [[ $s == "$stage" ]] || echo -n "$s,"; done)
+  others=${others%,}
+  start_child "$dir/logger.log" lcm-logger --lcm-url="$URL" -f -q "$dir/run.lcmlog"
+  start_child "$dir/up.log" "$BIN/nerv_up" --config "$NERV_ROOT/config/pipeline.yaml" --lcm-url "$URL" \
+    --services "$others" --quiet
+  "$BIN/nerv_source" --data "$data" --repeat 2 --rate 10 --lcm-url "$URL" $wait_flag \
+    --wait-for "$others" 2>"$dir/source1.log" || fail "without $stage: $(tail -c 300 "$dir/source1.log")"
+  sleep 1
+  STAGE_BACK_US=$(( $(date +%s%N) / 1000 ))
+  start_child "$dir/$stage.log" "$BIN/$stage" --lcm-url "$URL"
+  "$BIN/nerv_source" --data "$data" --rate 10 --frames 10 --lcm-url "$URL" --drain-timeout 20 \
+    --wait-for "$(IFS=,; echo "${SERVICES[*]}")" 2>"$dir/source2.log" \
+    || fail "with $stage back not every frame came out: $(tail -c 300 "$dir/source2.log")"
+  sleep 0.3
+  stop_children
+}

@@ -8,20 +8,8 @@ source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
 trap 'stop_children; rm -rf "$tmp"' EXIT
-data=$(synthetic_sequence urban 20)
-start_child "$tmp/logger.log" lcm-logger --lcm-url="$URL" -f -q "$tmp/run.lcmlog"
-start_child "$tmp/up.log" "$BIN/nerv_up" --config "$NERV_ROOT/config/pipeline.yaml" --lcm-url "$URL" \
-  --services stereo_matcher,stixel,validator --quiet
-"$BIN/nerv_source" --data "$data" --repeat 2 --rate 10 --lcm-url "$URL" --drain-timeout 20 \
-  --wait-for stereo_matcher,stixel,validator 2>"$tmp/source1.log" \
-  || fail "without snv_extrinsic not every frame came out: $(tail -c 300 "$tmp/source1.log")"
-resumed_us=$(( $(date +%s%N) / 1000 ))
-start_child "$tmp/snv.log" "$BIN/snv_extrinsic" --lcm-url "$URL"
-"$BIN/nerv_source" --data "$data" --rate 10 --frames 10 --lcm-url "$URL" --drain-timeout 20 \
-  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" \
-  || fail "with snv_extrinsic back not every frame came out: $(tail -c 300 "$tmp/source2.log")"
-sleep 0.3
-stop_children
+stage_down_and_back snv_extrinsic "--drain-timeout 20" "$tmp"
+resumed_us=$STAGE_BACK_US
 
 # One line per DETECTIONS: received [us], seq, capture [us], unvalidated, validated.
 "$BIN/nerv_export" "$tmp/run.lcmlog" --json --no-blobs | grep '"channel":"DETECTIONS"' | awk '

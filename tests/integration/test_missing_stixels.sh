@@ -7,20 +7,8 @@ source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
 trap 'stop_children; rm -rf "$tmp"' EXIT
-data=$(synthetic_sequence urban 20)
-start_child "$tmp/logger.log" lcm-logger --lcm-url="$URL" -f -q "$tmp/run.lcmlog"
-start_child "$tmp/up.log" "$BIN/nerv_up" --config "$NERV_ROOT/config/pipeline.yaml" --lcm-url "$URL" \
-  --services stereo_matcher,snv_extrinsic,validator --quiet
-"$BIN/nerv_source" --data "$data" --repeat 2 --rate 10 --lcm-url "$URL" --no-wait \
-  --wait-for stereo_matcher,snv_extrinsic,validator 2>"$tmp/source1.log" || fail "source: $(tail -c 300 "$tmp/source1.log")"
-sleep 1
-resumed_us=$(( $(date +%s%N) / 1000 ))
-start_child "$tmp/stixel.log" "$BIN/stixel" --lcm-url "$URL"
-"$BIN/nerv_source" --data "$data" --rate 10 --frames 10 --lcm-url "$URL" --drain-timeout 20 \
-  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" \
-  || fail "with the stixel stage back not every frame came out: $(tail -c 300 "$tmp/source2.log")"
-sleep 0.3
-stop_children
+stage_down_and_back stixel "--no-wait" "$tmp"
+resumed_us=$STAGE_BACK_US
 
 "$BIN/nerv_export" "$tmp/run.lcmlog" --json --no-blobs >"$tmp/all.jsonl"
 # EXTRINSICS while the stixel stage was down: received [us], capture [us], valid, height [m].
