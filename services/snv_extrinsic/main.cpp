@@ -1,14 +1,13 @@
 // snv_extrinsic service: DISPARITY + STIXELS (joined by seq) -> EXTRINSICS + SURFACE_NORMALS.
 // While the stixel stage is down (two frames in a row without STIXELS and none since,
-// partner_presence.hpp) the camera pose goes on from the disparity alone: EXTRINSICS
+// partner_join.hpp) the camera pose goes on from the disparity alone: EXTRINSICS
 // at once for every frame, without the stixel stage's ground model (on KITTI 0926 and
 // four synthetic sets within 4 mm, 0.03 deg of pitch and 0.21 deg of roll of the pose
 // with it), and no SURFACE_NORMALS, which only serve the hypotheses in STIXELS.
 #include <chrono>
 
 #include "message_convert.hpp"
-#include "partner_presence.hpp"
-#include "seq_join.hpp"
+#include "partner_join.hpp"
 #include "service_config.hpp"
 #include "snv_extrinsic.hpp"
 
@@ -57,50 +56,40 @@ int serve(ServiceConfig& config) {
   };
 
   // Two frames in a row: a single lost STIXELS message is not the stixel stage being down.
-  PartnerPresence stixels(2);
-  SeqJoin<disparity_t, stixels_t> join(
-      join_settings.capacity, join_settings.timeout_us,
-      [&](const disparity_t& d, const stixels_t& s) { process(d, &s); },
-      [&](const std::optional<disparity_t>& d, const std::optional<stixels_t>& s) {
-        if (d) {  // its STIXELS never came: the camera pose still goes out
-          if (!stixels.absent()) {
-            stixels.missed();
-            node.error("join_timeout", "frame " + std::to_string(d->header.seq) +
-                                           ": no STIXELS with the same seq, camera pose from the disparity alone");
-          }
-          stixels.wentAlone(d->header.seq);
-          node.count("pose_without_stixels");
-          return process(*d, nullptr);
-        }
-        node.countDropped();
-        node.error("join_timeout", "frame " + std::to_string(s->header.seq) + ": no DISPARITY with the same seq");
-      });
+  PartnerJoin<disparity_t, stixels_t> join(
+      join_settings.capacity, join_settings.timeout_us, 2,
+      {[&](const disparity_t& d, const stixels_t& s) { process(d, &s); },
+       // Its STIXELS never came, or are not coming: the camera pose still goes out.
+       [&](const disparity_t& d, Alone why) {
+         if (why == Alone::Waited)
+           node.error("join_timeout", "frame " + std::to_string(d.header.seq) +
+                                          ": no STIXELS with the same seq, camera pose from the disparity alone");
+         else if (why == Alone::NotWaiting)  // the stixel stage is down: no use waiting
+           node.error("missing_stixels", "frame " + std::to_string(d.header.seq) +
+                                             ": no STIXELS coming, camera pose from the disparity alone");
+         node.count("pose_without_stixels");
+         process(d, nullptr);
+       },
+       // STIXELS for a frame whose pose went out alone are late: counted, not joined again.
+       [&](const stixels_t&) { node.count("late_stixels"); },
+       [&](const stixels_t& s) {
+         node.countDropped();
+         node.error("join_timeout", "frame " + std::to_string(s.header.seq) + ": no DISPARITY with the same seq");
+       }});
 
   node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkDisparity(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
-    if (stixels.goesAlone(msg.header.seq)) {  // the stixel stage is down: no use waiting
-      node.error("missing_stixels", "frame " + std::to_string(msg.header.seq) +
-                                        ": no STIXELS coming, camera pose from the disparity alone");
-      node.count("pose_without_stixels");
-      return process(msg, nullptr);
-    }
     join.pushA(msg.header.seq, msg, nowUtime());
   }, join_settings.queue);
   node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkStixels(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
-    // STIXELS for a frame whose pose went out alone are late: counted, not joined again.
-    if (!stixels.arrived(msg.header.seq)) return node.count("late_stixels");
     join.pushB(msg.header.seq, msg, nowUtime());
   }, join_settings.queue + 2);
-  node.onTick([&] {
-    join.expire(nowUtime());
-    // Once STIXELS are absent, the frames already waiting for theirs go on now too.
-    if (stixels.absent()) join.expireAll();
-  });
+  node.onTick([&] { join.tick(nowUtime()); });
   return node.spin();
 }
 

@@ -3,12 +3,11 @@
 // hypothesis marked "unvalidated", so no frame disappears downstream. While
 // snv_extrinsic is down (two frames expired without normals and none came since),
 // frames are published at once instead of after join_timeout_ms each
-// (partner_presence.hpp), until normals come again.
+// (partner_join.hpp), until normals come again.
 #include <chrono>
 
 #include "message_convert.hpp"
-#include "partner_presence.hpp"
-#include "seq_join.hpp"
+#include "partner_join.hpp"
 #include "service_config.hpp"
 #include "validator.hpp"
 
@@ -53,49 +52,40 @@ int serve(ServiceConfig& config) {
 
   // Two frames in a row: a single lost SURFACE_NORMALS message is not snv_extrinsic being down
   // (with one, the frame or two then in flight would go out unvalidated as well).
-  PartnerPresence normals(2);
-  SeqJoin<stixels_t, surface_normals_t> join(
-      join_settings.capacity, join_settings.timeout_us,
-      [&](const stixels_t& s, const surface_normals_t& n) { publish(s, &n); },
-      [&](const std::optional<stixels_t>& s, const std::optional<surface_normals_t>& n) {
-        if (s) {
-          node.error("missing_normals", "frame " + std::to_string(s->header.seq) +
-                                            ": no SURFACE_NORMALS, hypotheses unvalidated");
-          normals.missed();
-          normals.wentAlone(s->header.seq);
-          publish(*s, nullptr);
-        } else {
-          node.countDropped();
-          node.error("missing_stixels", "frame " + std::to_string(n->header.seq) +
-                                            ": SURFACE_NORMALS without STIXELS");
-        }
-      });
+  PartnerJoin<stixels_t, surface_normals_t> join(
+      join_settings.capacity, join_settings.timeout_us, 2,
+      {[&](const stixels_t& s, const surface_normals_t& n) { publish(s, &n); },
+       [&](const stixels_t& s, Alone why) {
+         if (why == Alone::NotWaiting) {  // snv_extrinsic is down: no use waiting
+           node.error("missing_normals", "frame " + std::to_string(s.header.seq) +
+                                             ": no SURFACE_NORMALS coming, hypotheses unvalidated at once");
+           node.count("published_without_waiting");
+         } else {
+           node.error("missing_normals", "frame " + std::to_string(s.header.seq) +
+                                             ": no SURFACE_NORMALS, hypotheses unvalidated");
+         }
+         publish(s, nullptr);
+       },
+       // Normals for a frame already published alone are late: counted, not joined again.
+       [&](const surface_normals_t&) { node.count("late_normals"); },
+       [&](const surface_normals_t& n) {
+         node.countDropped();
+         node.error("missing_stixels", "frame " + std::to_string(n.header.seq) + ": SURFACE_NORMALS without STIXELS");
+       }});
 
   node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkStixels(msg, node.options().limits))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
-    if (normals.goesAlone(msg.header.seq)) {  // snv_extrinsic is down: no use waiting
-      node.error("missing_normals", "frame " + std::to_string(msg.header.seq) +
-                                        ": no SURFACE_NORMALS coming, hypotheses unvalidated at once");
-      node.count("published_without_waiting");
-      return publish(msg, nullptr);
-    }
     join.pushA(msg.header.seq, msg, nowUtime());
   }, join_settings.queue);
   node.subscribe<surface_normals_t>("SURFACE_NORMALS", [&](const surface_normals_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkSurfaceNormals(msg))
       return node.error(p.counter, "frame " + std::to_string(msg.header.seq) + ": " + p.message);
-    // Normals for a frame already published alone are late: counted, not joined again.
-    if (!normals.arrived(msg.header.seq)) return node.count("late_normals");
     join.pushB(msg.header.seq, msg, nowUtime());
   }, join_settings.queue);
-  node.onTick([&] {
-    join.expire(nowUtime());
-    // Once normals are absent, the frames already waiting for theirs go out now too.
-    if (normals.absent()) join.expireAll();
-  });
+  node.onTick([&] { join.tick(nowUtime()); });
   return node.spin();
 }
 

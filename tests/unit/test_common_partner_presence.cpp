@@ -1,12 +1,15 @@
 // PartnerPresence (partner_presence.hpp): absent after the given number of frames in a
 // row expired without their partner, present again with the next partner message,
-// and a partner for a frame already sent alone is recognised as late, once.
+// and a partner for a frame already sent alone is recognised as late, once; and
+// PartnerJoin (partner_join.hpp), which the validator and snv_extrinsic build on it.
 #include <gtest/gtest.h>
 
+#include "partner_join.hpp"
 #include "partner_presence.hpp"
 #include "seq_join.hpp"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 using namespace nerv;
@@ -88,4 +91,48 @@ TEST(commonSeqJoin, ExpireAllHandsOverEveryPendingEntryOldestFirst) {
   join.expireAll();
   EXPECT_EQ(expired, std::vector<int>({1, -2, 3}));
   EXPECT_EQ(join.pending(), 0u);
+}
+
+namespace {
+
+struct Msg {
+  struct {
+    int64_t seq = 0;
+  } header;
+};
+
+Msg msg(int64_t seq) {
+  Msg m;
+  m.header.seq = seq;
+  return m;
+}
+
+}  // namespace
+
+TEST(commonPartnerJoin, RoutesEveryFrameOnceAndStopsWaitingWhileThePartnerIsAbsent) {
+  std::vector<std::string> log;
+  PartnerJoin<Msg, Msg> join(
+      8, 1000, 2,
+      {[&](const Msg& a, const Msg&) { log.push_back("matched " + std::to_string(a.header.seq)); },
+       [&](const Msg& a, Alone why) {
+         log.push_back(std::string(why == Alone::Waited ? "waited " : why == Alone::Flushed ? "flushed " : "at once ") +
+                       std::to_string(a.header.seq));
+       },
+       [&](const Msg& b) { log.push_back("late " + std::to_string(b.header.seq)); },
+       [&](const Msg& b) { log.push_back("orphan " + std::to_string(b.header.seq)); }});
+  join.pushA(1, msg(1), 0);
+  join.pushB(1, msg(1), 0);
+  join.pushA(2, msg(2), 0);
+  join.pushA(3, msg(3), 500);
+  join.tick(1500);  // 2 waited in vain: one miss, the partner is not absent yet
+  join.pushA(4, msg(4), 1600);
+  join.tick(2000);  // 3 waited in vain too: absent, and 4, still waiting, goes on now
+  join.pushA(5, msg(5), 2100);  // does not wait at all
+  join.pushB(4, msg(4), 2200);  // 4 went on alone: late; the partner is back
+  join.pushA(6, msg(6), 2300);
+  join.pushB(6, msg(6), 2300);
+  join.pushB(7, msg(7), 2400);
+  join.tick(4000);  // 7 never got its first half
+  EXPECT_EQ(log, std::vector<std::string>({"matched 1", "waited 2", "waited 3", "flushed 4", "at once 5", "late 4",
+                                           "matched 6", "orphan 7"}));
 }
