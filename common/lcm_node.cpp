@@ -40,6 +40,12 @@ int64_t nowUtime() {
       .count();
 }
 
+std::string hostName() {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  return host;
+}
+
 Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(options_.lcm_url)) {
   if (!lcm_.good())
     throw std::runtime_error("LCM cannot start on " + resolveUrl(options_.lcm_url) +
@@ -48,9 +54,7 @@ Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(
       options_.shard_index >= options_.shard_count)
     throw std::runtime_error("shard index " + std::to_string(options_.shard_index) + " of " +
                              std::to_string(options_.shard_count) + " is invalid");
-  char host[256] = {0};
-  gethostname(host, sizeof host - 1);
-  host_ = host;
+  host_ = hostName();
   lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(10);
   std::fprintf(stderr, "%s: nerv %s\n", options_.service.c_str(), buildVersion());
   struct sigaction sa {};

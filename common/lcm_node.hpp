@@ -40,6 +40,8 @@ struct NodeOptions {
 };
 
 int64_t nowUtime();
+// This computer's name, as every NERV_HEALTH report carries it.
+std::string hostName();
 
 class Node {
  public:

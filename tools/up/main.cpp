@@ -249,9 +249,7 @@ int up(const Options& flags) {
   lcm::LCM lcm(url);
   if (!lcm.good()) throw std::runtime_error("LCM cannot start on " + url);
   HealthBoard board;
-  char host[256] = {0};
-  gethostname(host, sizeof host - 1);
-  board.host = host;
+  board.host = hostName();
   lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
 
   std::fprintf(stderr, "nerv_up: nerv %s\n", buildVersion());
