@@ -5,7 +5,7 @@ namespace nerv {
 const std::vector<std::string>& serviceOnlyKeys(const std::string& service) {
   static const std::vector<std::string> matcher = {"shard", "queue", "output_encoding", "publish_confidence"};
   static const std::vector<std::string> stixel = {"shard", "queue", "min_prior_confidence", "max_prior_age_frames",
-                                                  "max_unobserved_fraction"};
+                                                  "max_prior_age_ms", "max_unobserved_fraction"};
   static const std::vector<std::string> joining = {"shard", "queue", "join_capacity", "join_timeout_ms"};
   static const std::vector<std::string> none = {"shard"};
   if (service == "stereo_matcher") return matcher;

@@ -18,6 +18,10 @@ int serve(ServiceConfig& config) {
   config.section().get("min_prior_confidence", min_prior_confidence, 0.0, 1.0);
   int max_prior_age_frames = 30;
   config.section().get("max_prior_age_frames", max_prior_age_frames, 0, 100000);
+  // ... and in capture time: a short earlier drive's seqs are counted through again
+  // by the next one, minutes later (0: no limit in time).
+  int max_prior_age_ms = 3000;
+  config.section().get("max_prior_age_ms", max_prior_age_ms, 0, 3600000);
   // A frame with more unobserved strips than this share counts as an error
   // (health "degraded"). Measured (bench_detection "observed free space"): KITTI
   // 0926 8-11 of 249 strips (the image borders), the synthetic sets 12-73 (wet
@@ -27,7 +31,7 @@ int serve(ServiceConfig& config) {
   config.finish();
 
   Node node(config.nodeOptions());
-  stixel::PriorSelection priors(max_prior_age_frames);
+  stixel::PriorSelection priors(max_prior_age_frames, int64_t{max_prior_age_ms} * 1000);
   cv::Mat disparity;
   warmUp(config, [&](const WarmupSize& size) {
     const StereoCamera cam = warmupCamera(size);
@@ -37,7 +41,7 @@ int serve(ServiceConfig& config) {
   node.subscribe<extrinsics_t>("EXTRINSICS", [&](const extrinsics_t& e) {
     if (Problem p = checkExtrinsics(e)) return node.error(p.counter, p.message);
     if (!e.valid || e.confidence < min_prior_confidence) return;
-    priors.offer(e.header.seq, {true, e.pitch_deg, e.roll_deg, e.height_m});
+    priors.offer(e.header.seq, e.header.utime, {true, e.pitch_deg, e.roll_deg, e.height_m});
   }, 10);
 
   node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
@@ -50,7 +54,7 @@ int serve(ServiceConfig& config) {
 
     const auto start = std::chrono::steady_clock::now();
     const stixel::StixelResult result = stixel::estimateStixels(disparity, toCamera(msg.calib), params,
-                                                                       priors.forFrame(msg.header.seq));
+                                                                       priors.forFrame(msg.header.seq, msg.header.utime));
     const stixels_t out = stixelsMessage(
         msg.header, result.ground, result.stixels, result.hypotheses,
         std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count(),

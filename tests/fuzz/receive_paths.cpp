@@ -411,22 +411,27 @@ static Outcome receiveSurfaceNormalsUnguarded(const uint8_t* data, size_t size) 
 static Outcome receiveExtrinsicsUnguarded(const uint8_t* data, size_t size) {
   extrinsics_t e;
   if (!decodeLikeNode(e, data, size)) return reject("decode_failed", "does not decode");
-  // stixel/main.cpp (defaults: min_prior_confidence 0.3, max_prior_age_frames 30).
+  // stixel/main.cpp (defaults: min_prior_confidence 0.3, max_prior_age_frames 30,
+  // max_prior_age_ms 3000).
   if (Problem p = checkExtrinsics(e)) return reject(p);
   return processed([&]() -> std::string {
     if (!e.valid || e.confidence < 0.3f) return "";
-    stixel::PriorSelection priors(30);
-    priors.offer(e.header.seq, {true, e.pitch_deg, e.roll_deg, e.height_m});
-    // The scene's frame may use this pose only when it is 1..30 frames older.
-    const int64_t frame_seq = scene().disparity_msg.header.seq;
-    const bool recent = e.header.seq < frame_seq && e.header.seq >= frame_seq - 30;
-    if (priors.forFrame(frame_seq).valid != recent)
+    stixel::PriorSelection priors(30, 3'000'000);
+    priors.offer(e.header.seq, e.header.utime, {true, e.pitch_deg, e.roll_deg, e.height_m});
+    // The scene's frame may use this pose only when it is 1..30 frames older and
+    // captured 0..3 s before it (unsigned: far-apart values must not wrap into range).
+    const header_t& frame = scene().disparity_msg.header;
+    const bool recent = e.header.seq < frame.seq && e.header.seq >= frame.seq - 30 &&
+                        e.header.utime <= frame.utime &&
+                        static_cast<uint64_t>(frame.utime) - static_cast<uint64_t>(e.header.utime) <= 3'000'000u;
+    if (priors.forFrame(frame.seq, frame.utime).valid != recent)
       return "prior of frame " + std::to_string(e.header.seq) + " offered to frame " +
-             std::to_string(frame_seq) + (recent ? " is lost" : " is used");
-    // The next frame uses it.
-    header_t header = scene().disparity_msg.header;
+             std::to_string(frame.seq) + (recent ? " is lost" : " is used");
+    // The next frame, captured at the same time, uses it.
+    header_t header = frame;
     header.seq = static_cast<int64_t>(static_cast<uint64_t>(e.header.seq) + 1);  // wraps, no UB
-    const stixel::GroundPrior prior = priors.forFrame(header.seq);
+    header.utime = e.header.utime;
+    const stixel::GroundPrior prior = priors.forFrame(header.seq, header.utime);
     const stixels_t stixels = stixelsMessage(
         header, stixel::estimateStixels(weakGroundDisparity(), scene().camera, stixel::Params{}, prior));
     return stixelsOutputBug(stixels);

@@ -68,6 +68,7 @@ const std::map<std::string, std::string> kValues = {
     {"shard", "{count: 1, index: 0}"},   {"queue", "3"},
     {"output_encoding", "png16"},       {"publish_confidence", "false"},
     {"min_prior_confidence", "0.4"},    {"max_prior_age_frames", "20"},
+    {"max_prior_age_ms", "2000"},
     {"max_unobserved_fraction", "0.5"}, {"join_capacity", "6"},
     {"join_timeout_ms", "1500"}};
 
