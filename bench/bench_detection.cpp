@@ -569,7 +569,7 @@ int main(int argc, char** argv) {
           const int li = out_kept[k].label;
           ++cls_tp_kept[labels[li].type], kept_tp_label[li] = true;
           const Hypothesis& h = st.hypotheses[val_index[k]];
-          depth_kept.add(labels[li], h.z_m, h.nearest_z_m);
+          depth_kept.add(labels[li], h.z_m, h.nearest_z_m, h.nearest_z_sigma_m);
         }
       for (size_t i = 0; i < hyps.size(); ++i) {
         if (out_all[i].outcome == MatchOutcome::TruePositive) {

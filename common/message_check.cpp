@@ -140,8 +140,11 @@ Problem checkStixels(const stixels_t& msg, const Limits& limits) {
       int64_t{msg.num_columns} * msg.column_width_px > int64_t{limits.max_width} + msg.column_width_px)
     return problem("bad_value", "stixels: observed free space has shares outside 0..1 or strips that do not fit the image");
   for (const auto& r : msg.rois) {
-    if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.nearest_z_m, r.disparity}))
+    if (!finite({r.x_m, r.y_m, r.z_m, r.width_m, r.height_m, r.distance_m, r.nearest_z_m, r.nearest_z_sigma_m,
+                 r.disparity}))
       return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has non-finite numbers");
+    if (r.nearest_z_sigma_m < 0)
+      return problem("bad_value", "stixels: roi " + std::to_string(r.id) + " has a negative depth uncertainty");
     // Boxes lie in the image: one outside every accepted image came from a
     // corrupt message (it would be kept as an unvalidated detection).
     if (r.w <= 0 || r.h <= 0 || r.x < 0 || r.y < 0 || int64_t{r.x} + r.w > limits.max_width ||

@@ -314,6 +314,7 @@ roi_t toMessage(const Hypothesis& h) {
   m.height_m = h.height_m;
   m.distance_m = h.distance_m;
   m.nearest_z_m = h.nearest_z_m;
+  m.nearest_z_sigma_m = h.nearest_z_sigma_m;
   m.disparity = h.disparity;
   m.num_stixels = h.num_stixels;
   return m;
@@ -330,6 +331,7 @@ Hypothesis fromMessage(const roi_t& m) {
   h.height_m = m.height_m;
   h.distance_m = m.distance_m;
   h.nearest_z_m = m.nearest_z_m;
+  h.nearest_z_sigma_m = m.nearest_z_sigma_m;
   h.disparity = m.disparity;
   h.num_stixels = m.num_stixels;
   return h;
@@ -425,6 +427,7 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v) {
   d.height_m = h.height_m;
   d.distance_m = h.distance_m;
   d.nearest_z_m = h.nearest_z_m;
+  d.nearest_z_sigma_m = h.nearest_z_sigma_m;
   d.label = v.label;
   d.score = v.score;
   d.kept = v.kept;

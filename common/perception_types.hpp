@@ -54,6 +54,7 @@ struct Hypothesis {
   float x_m = 0, y_m = 0, z_m = 0;  // base centre, left camera frame [m]
   float width_m = 0, height_m = 0, distance_m = 0;
   float nearest_z_m = 0;            // depth of the nearest part (90th percentile of the stixels' disparities) [m]
+  float nearest_z_sigma_m = 0;      // 1-sigma uncertainty of nearest_z_m (stixel depth_sigma_px) [m]
   float disparity = 0;
   int num_stixels = 0;
 };

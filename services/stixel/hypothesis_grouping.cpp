@@ -600,6 +600,8 @@ std::vector<Hypothesis> groupStixels(const std::vector<Stixel>& stixels, const S
     hy.disparity = d;
     hy.num_stixels = static_cast<int>(g.size());
     hy.nearest_z_m = static_cast<float>(cam.depthFromDisparity(d_near));
+    // z = f B / d, so a disparity error s gives dz = z^2 s / (f B) = z s / d.
+    hy.nearest_z_sigma_m = d_near > 0 ? hy.nearest_z_m * p.depth_sigma_px / d_near : 0.0f;
     if (hy.height_m < p.min_obstacle_height_m || hy.distance_m > p.max_distance_m) return;
     out.push_back(hy);
   };

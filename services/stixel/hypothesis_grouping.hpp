@@ -49,6 +49,7 @@ struct GroupingParams {
   bool tower_edges_above_surround = true;  // such a post's box edges are cut on its rows above the hedge only
   float min_obstacle_height_m = 0.25f; // lower groups are dropped
   float max_distance_m = 60.0f;        // farther groups are dropped
+  float depth_sigma_px = 0.35f;        // 1-sigma disparity error of the nearest part [px]
   float min_single_stixel_height_m = 0.0f;  // a lone stixel this tall is a hypothesis; 0 = never
   HeightStepParams height_steps;       // a road user beside a lower vehicle at its depth leaves its group (height_steps.hpp)
   GapStripParams gap_strips;           // a road user cut off at the background gap beside it (gap_strips.hpp)

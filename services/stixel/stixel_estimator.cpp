@@ -228,6 +228,7 @@ StixelResult estimateStixels(const cv::Mat& disparity, const StereoCamera& cam,
   gp.tower_companions = params.tower_companions;
   gp.min_obstacle_height_m = params.min_obstacle_height_m;
   gp.max_distance_m = params.max_distance_m;
+  gp.depth_sigma_px = params.depth_sigma_px;
   gp.min_single_stixel_height_m = params.min_single_stixel_height_m;
   gp.height_steps.min_step_m = params.height_step_min_m;
   gp.height_steps.max_width_m = params.height_step_max_width_m;

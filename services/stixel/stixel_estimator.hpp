@@ -24,6 +24,7 @@ struct Params {
   float ground_tolerance_m = 0.2f;       // pixels closer than this to the road plane are road
   float min_obstacle_height_m = 0.25f;   // shorter stixels are dropped
   float max_distance_m = 60.0f;          // hypotheses farther away are dropped
+  float depth_sigma_px = 0.35f;          // 1-sigma disparity error of a hypothesis' nearest part: its nearest_z_sigma_m [px]
   float min_observed_share = 0.3f;       // a strip whose free space has a smaller share of measured pixels is unobserved: unknown, not free (observed_free_space.hpp)
   float min_camera_height_m = 0.5f;      // ground lines implying another height are rejected
   float max_camera_height_m = 4.0f;

@@ -10,6 +10,7 @@ Params readParams(ConfigSection& c) {
   c.get("ground_tolerance_m", p.ground_tolerance_m, 0.0, 1.0);
   c.get("min_obstacle_height_m", p.min_obstacle_height_m, 0.0, 5.0);
   c.get("max_distance_m", p.max_distance_m, 1.0, 500.0);
+  c.get("depth_sigma_px", p.depth_sigma_px, 0.0, 10.0);
   c.get("min_camera_height_m", p.min_camera_height_m, 0.1, 10.0);
   c.get("max_camera_height_m", p.max_camera_height_m, 0.1, 10.0);
   c.get("max_pitch_deg", p.max_pitch_deg, 0.0, 45.0);

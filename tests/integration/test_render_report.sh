@@ -67,6 +67,12 @@ html="$out/report/report.html"
 grep -q 'stixel + SNV (kept)' "$html" || fail "no precision/recall table in the report"
 grep -q 'Distance of the kept detections' "$html" && grep -q '<td>nearest_z_m</td>' "$html" \
   || fail "no distance table in the report (6 urban frames have fully visible cars)"
+# The uncertainty of the nearest depth came over the bus with each detection
+# (stixel -> roi_t -> validator -> detection_t.nearest_z_sigma_m): the report
+# compares the errors with it.
+grep -q '<th>within 1 sigma</th>' "$html" \
+  && grep -Eq '<td>nearest_z_m</td>(<td[^>]*>[^<]*</td>){6}<td[^>]*>[0-9]+ %</td><td[^>]*>[0-9]+ %</td>' "$html" \
+  || fail "the distance table has no share within the detections' nearest_z_sigma_m"
 grep -q 'Why objects were missed' "$html" \
   && { grep -q 'No labelled object was missed' "$html" || grep -q '<th>by class (stixel + SNV)</th>' "$html"; } \
   || fail "no misses-by-cause section in the report"

@@ -238,9 +238,10 @@ void mutateGround(ground_model_t& g, std::mt19937& rng) {
 
 void mutateRoi(roi_t& r, std::mt19937& rng) {
   int32_t* ints[] = {&r.id, &r.x, &r.y, &r.w, &r.h, &r.num_stixels};
-  float* floats[] = {&r.x_m, &r.y_m, &r.z_m, &r.width_m, &r.height_m, &r.distance_m, &r.nearest_z_m, &r.disparity};
+  float* floats[] = {&r.x_m,        &r.y_m,        &r.z_m,       &r.width_m,          &r.height_m,
+                     &r.distance_m, &r.nearest_z_m, &r.disparity, &r.nearest_z_sigma_m};
   if (rng() % 2) *ints[rng() % 6] = pickInt(rng);
-  else *floats[rng() % 7] = pickFloat(rng);
+  else *floats[rng() % 9] = pickFloat(rng);
 }
 
 Bytes mutateStixels(const Bytes& seed, std::mt19937& rng) {

@@ -86,3 +86,33 @@ TEST(toolsDistanceAccuracy, BandsSummariseBiasMedianAndTail) {
   EXPECT_TRUE(std::isinf(fb[0].to_m));
   EXPECT_NE(formatDistanceBands(fb).find("40+ m"), std::string::npos);
 }
+
+TEST(toolsDistanceAccuracy, ErrorsAgainstTheEstimatesOwnSigma) {
+  DistanceAccuracy a;
+  // At 10 m, sigma 0.2 m: errors 0.1 (0.5 sigma), 0.3 (1.5), 0.5 (2.5), 0.2 (1.0 exactly: within).
+  a.add(10, 10.1f, 0.2f);
+  a.add(10, 9.7f, 0.2f);
+  a.add(10, 10.5f, 0.2f);
+  a.add(10, 10.2f, 0.2f);
+  // Without a sigma (0, negative, not finite): in the error bands, not in the sigma shares.
+  a.add(10, 10.4f, 0);
+  a.add(10, 10.4f, -1);
+  a.add(10, 10.4f, NAN);
+  const auto bands = a.bands({0, 20});
+  ASSERT_EQ(bands.size(), 1u);
+  EXPECT_EQ(bands[0].count, 7);
+  EXPECT_EQ(bands[0].count_with_sigma, 4);
+  EXPECT_NEAR(bands[0].within_1sigma, 0.5, 1e-9);
+  EXPECT_NEAR(bands[0].within_2sigma, 0.75, 1e-9);
+  // |err| / sigma sorted 0.5, 1.0, 1.5, 2.5: the 68th percentile is the third (index 0.68 * 3 -> 2).
+  EXPECT_NEAR(bands[0].p68_abs_over_sigma, 1.5, 1e-5);
+  const std::string text = formatDistanceBands(bands);
+  EXPECT_NE(text.find("within 1 / 2 sigma  50 /  75 %  |err|/sigma p68 1.50"), std::string::npos) << text;
+  // No sigma at all: no sigma line.
+  DistanceAccuracy none;
+  none.add(10, 10.4f);
+  EXPECT_EQ(none.bands({0})[0].count_with_sigma, 0);
+  EXPECT_EQ(formatDistanceBands(none.bands({0})).find("sigma"), std::string::npos);
+  // One band over every range is printed as "all".
+  EXPECT_NE(formatDistanceBands(a.bands({0})).find("all"), std::string::npos);
+}

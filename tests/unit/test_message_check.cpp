@@ -125,6 +125,16 @@ TEST(commonMessageCheck, StixelsCountsAndNumbers) {
   EXPECT_FALSE(checkStixels(s, Limits{}));
   EXPECT_FLOAT_EQ(fromMessage(s.rois[0]).nearest_z_m, 11.25f);
   EXPECT_FLOAT_EQ(toDetection(fromMessage(s.rois[0]), Verdict{}).nearest_z_m, 11.25f);
+  // So is its uncertainty: finite and not negative.
+  for (const float bad : {NAN, INFINITY, -0.1f}) {
+    h.nearest_z_sigma_m = bad;
+    s.rois[0] = toMessage(h);
+    EXPECT_EQ(checkStixels(s, Limits{}).counter, "bad_value") << bad;
+  }
+  h.nearest_z_sigma_m = 0.11f;
+  s.rois[0] = toMessage(h);
+  EXPECT_FALSE(checkStixels(s, Limits{}));
+  EXPECT_FLOAT_EQ(toDetection(fromMessage(s.rois[0]), Verdict{}).nearest_z_sigma_m, 0.11f);
   surface_normals_t n;
   n.num_rois = 1;
   n.rois.push_back(toMessage(NormalStats{}));

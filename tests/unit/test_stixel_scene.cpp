@@ -66,6 +66,13 @@ TEST(stixelFreeSpace, OneBoxAtKnownDistance) {
   // A face square to the camera: its nearest part is at its depth.
   EXPECT_NEAR(h.nearest_z_m, h.z_m, 0.02 * h.z_m);
   EXPECT_LE(h.nearest_z_m, h.z_m + 1e-4f);
+  // Its uncertainty: a disparity error of depth_sigma_px (0.35) at f B = fx * B,
+  // z^2 * 0.35 / (f B): 0.29 m at 18 m on this camera.
+  const double fb = cam.fx * cam.baseline_m;
+  EXPECT_NEAR(h.nearest_z_sigma_m, h.nearest_z_m * h.nearest_z_m * 0.35 / fb, 1e-4 * h.nearest_z_m);
+  Params wider;
+  wider.depth_sigma_px = 0.7f;
+  EXPECT_NEAR(estimateStixels(disp, cam, wider).hypotheses.at(0).nearest_z_sigma_m, 2 * h.nearest_z_sigma_m, 1e-4);
 }
 
 TEST(stixelFreeSpace, NearestPartOfAVehicleWithItsSideInView) {

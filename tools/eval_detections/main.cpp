@@ -208,6 +208,12 @@ int main(int argc, char** argv) {
           j.field("median_abs_m", b.median_abs_m);
           j.field("p95_abs_m", b.p95_abs_m);
           j.field("median_rel", b.median_rel);
+          if (b.count_with_sigma > 0) {  // against the detections' own nearest_z_sigma_m
+            j.field("count_with_sigma", b.count_with_sigma);
+            j.field("within_1sigma", b.within_1sigma);
+            j.field("within_2sigma", b.within_2sigma);
+            j.field("p68_abs_over_sigma", b.p68_abs_over_sigma);
+          }
           j.endObject();
         }
         j.endArray();

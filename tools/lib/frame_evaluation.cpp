@@ -19,7 +19,8 @@ FrameEvaluation evaluateDetections(const detections_t& detections, const std::ve
   misses.addFrame(labels, params, all, all_near, all_matches, kept_matches);
   for (size_t k = 0; k < kept_matches.size(); ++k)
     if (kept_matches[k].outcome == MatchOutcome::TruePositive)
-      depth.add(labels[kept_matches[k].label], kept_det[k]->z_m, kept_det[k]->nearest_z_m);
+      depth.add(labels[kept_matches[k].label], kept_det[k]->z_m, kept_det[k]->nearest_z_m,
+                kept_det[k]->nearest_z_sigma_m);
   return {countMatches(all_matches, labels, params), countMatches(kept_matches, labels, params)};
 }
 

@@ -147,6 +147,7 @@ void write(JsonWriter& j, const roi_t& m) {
   j.field("height_m", m.height_m);
   j.field("distance_m", m.distance_m);
   j.field("nearest_z_m", m.nearest_z_m);
+  j.field("nearest_z_sigma_m", m.nearest_z_sigma_m);
   j.field("disparity", m.disparity);
   j.field("num_stixels", m.num_stixels);
   j.endObject();
@@ -239,6 +240,7 @@ void write(JsonWriter& j, const detection_t& m) {
   j.field("height_m", m.height_m);
   j.field("distance_m", m.distance_m);
   j.field("nearest_z_m", m.nearest_z_m);
+  j.field("nearest_z_sigma_m", m.nearest_z_sigma_m);
   j.field("label", m.label);
   j.field("score", m.score);
   j.field("kept", m.kept != 0);  // LCM boolean

@@ -499,7 +499,9 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
       page.paragraph("Depth of each kept true positive against its label's nearest depth (the nearest corner of the "
                      "labelled 3D box, or the labelled depth when the label has no size), for objects neither "
                      "truncated nor occluded (tools/lib/distance_accuracy): z_m is the depth of the median stixel, "
-                     "nearest_z_m of the object's nearest part.");
+                     "nearest_z_m of the object's nearest part; the last two columns: the share of "
+                     "nearest_z_m within one and two of the detections' own nearest_z_sigma_m of the truth (a "
+                     "calibrated uncertainty gives about 68 % and 95 %).");
       std::vector<std::vector<std::string>> rows_d;
       for (const auto& [name, acc] : {std::pair<const char*, const DistanceAccuracy*>{"z_m", &depth.z},
                                       {"nearest_z_m", &depth.nearest}})
@@ -507,8 +509,11 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
           rows_d.push_back({name,
                             std::isfinite(b.to_m) ? cv::format("%.0f-%.0f m", b.from_m, b.to_m) : cv::format("%.0f m and more", b.from_m),
                             std::to_string(b.count), fmt("%+.2f", b.bias_m), fmt("%.2f", b.median_abs_m),
-                            fmt("%.2f", b.p95_abs_m), fmt("%.1f %%", 100.0 * b.median_rel)});
-      page.table({"depth", "range", "boxes", "bias [m]", "median |error| [m]", "p95 |error| [m]", "median |error|"},
+                            fmt("%.2f", b.p95_abs_m), fmt("%.1f %%", 100.0 * b.median_rel),
+                            b.count_with_sigma ? fmt("%.0f %%", 100.0 * b.within_1sigma) : std::string("-"),
+                            b.count_with_sigma ? fmt("%.0f %%", 100.0 * b.within_2sigma) : std::string("-")});
+      page.table({"depth", "range", "boxes", "bias [m]", "median |error| [m]", "p95 |error| [m]", "median |error|",
+                  "within 1 sigma", "within 2 sigma"},
                  rows_d);
     }
     page.heading("Why objects were missed");
