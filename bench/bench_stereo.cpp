@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "disparity_metrics.hpp"
+#include "rectification_check.hpp"
 #include "stereo_matcher.hpp"
 
 using namespace nerv::stereo;
@@ -103,5 +104,21 @@ int main(int argc, char** argv) {
     std::printf("%-22s %9.1f %7.2f %9.1f %7.2f%% %7.1f%%\n", entries[i].label.c_str(), m, m / baseline_ms,
                 median(cpu_ms[i]), 100.0 * s.error_rate, 100.0 * s.density);
   }
+  // The stereo_matcher's rectification check (rectification_check.hpp) on the default
+  // matcher's disparity (else the last entry's): what one check costs, and the rows it reads.
+  size_t checked = entries.size() - 1;
+  for (size_t i = 0; i < entries.size(); ++i)
+    if (entries[i].label == "nerv_sgm") checked = i;
+  std::vector<double> check_ms;
+  RowOffset offset;
+  for (int r = 0; r < std::max(runs, 5); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    offset = measureRowOffset(left, right, disparities[checked]);
+    check_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::printf("rectification check on %s's disparity: %.2f ms (every 10th frame by default: %.2f ms a frame); "
+              "rows %+.2f px from %d points%s\n",
+              entries[checked].label.c_str(), median(check_ms), median(check_ms) / 10, offset.offset_px, offset.points,
+              offset.valid ? "" : " (no measurement)");
   return 0;
 }

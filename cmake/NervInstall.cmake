@@ -12,7 +12,7 @@ include(GNUInstallDirs)
 set(NERV_INSTALL_TARGETS
     nerv_stereo_matcher_service nerv_stixel_service nerv_snv_extrinsic_service nerv_validator_service
     nerv_up nerv_source nerv_export nerv_diff nerv_render nerv_report nerv_eval_detections
-    nerv_eval_disparity nerv_unrectify nerv_synth_cli)
+    nerv_eval_disparity nerv_unrectify nerv_misalign nerv_synth_cli)
 foreach(target ${NERV_INSTALL_TARGETS})
   if(TARGET ${target})
     install(TARGETS ${target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

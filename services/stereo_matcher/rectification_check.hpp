@@ -1,0 +1,69 @@
+// Is the rig still rectified? In a rectified pair a scene point lies on the same row in
+// both views, and the matcher searches along rows only. A rig that was knocked, warped by
+// heat or re-mounted puts the right view's rows off by a fraction of a pixel or more, and
+// its calibration file does not know: the disparity degrades without any other sign
+// (KITTI 0926 with the right views one row down: stixel + SNV F1 0.919 -> 0.447;
+// docs/stereo.md "Is the rig still rectified?").
+//
+// measureRowOffset: at the most textured points of a grid over the left view (the
+// smaller eigenvalue of the gradients' structure tensor over the window: texture in both
+// directions, so the row can be measured) that have a disparity d, Lucas-Kanade
+// from (x, y) in the left view to the right view, started at (x - d, y); points whose
+// horizontal result strays from the disparity, or whose track failed, are left out. The
+// median vertical displacement is the offset: the row of a point in the right view
+// minus its row in the left (+1: the right view's content one row lower).
+//
+// RowOffsetMonitor: the verdict over the last checks, so that one frame of glare or
+// motion blur does not raise it.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <deque>
+#include <string>
+
+namespace nerv::stereo {
+
+struct RowOffsetParams {
+  int grid_px = 12;               // candidate points every grid_px columns and rows
+  int max_points = 200;           // the most textured candidates tracked
+  int window_px = 11;             // texture and Lucas-Kanade window (square, odd)
+  float max_horizontal_miss_px = 1.0f;  // |x_right - (x - d)| above this: not the matched point
+  int min_points = 30;            // fewer tracked points: no measurement
+};
+
+struct RowOffset {
+  bool valid = false;     // at least min_points points tracked
+  int points = 0;         // points that passed
+  float offset_px = 0;    // median vertical displacement, right minus left [px]
+  float spread_px = 0;    // 1.4826 x median absolute deviation of the points' displacements [px]
+};
+
+// left, right: the rectified 8-bit gray views the matcher saw; disparity: its CV_32F
+// result (0 = invalid). Throws nothing; a flat or disparity-less frame gives valid = false.
+RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
+                           const RowOffsetParams& params = {});
+
+// The median of the last `window` valid measurements, and whether it exceeds the limit.
+class RowOffsetMonitor {
+ public:
+  RowOffsetMonitor(int window, float max_offset_px) : window_(window < 1 ? 1 : window), max_(max_offset_px) {}
+  // Adds a measurement (invalid ones are ignored) and returns true when a verdict is due:
+  // every `window` valid measurements.
+  bool add(const RowOffset& m);
+  int samples() const { return static_cast<int>(offsets_.size()); }
+  float median() const;                  // of the remembered measurements; 0 when none
+  bool misaligned() const { return samples() > 0 && std::abs(median()) > max_; }
+  // One line: "the right view's rows lie 0.82 px below the left's (median of the last 10
+  // checks, 143-201 points each)".
+  std::string describe() const;
+
+ private:
+  int window_;
+  float max_;
+  int since_verdict_ = 0;
+  std::deque<float> offsets_;
+  std::deque<int> points_;
+};
+
+}  // namespace nerv::stereo

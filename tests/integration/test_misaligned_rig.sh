@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# A rig that no longer matches its calibration: the real stereo_matcher compares the rows
+# of its two views (rectification_check.hpp) and says so. The KITTI 0926 frames (the
+# synthetic urban sequence when ../shared/data is absent) are played as they are and with
+# the right views moved by +1 and -1.5 rows (nerv_misalign, calibration unchanged), a check
+# on every frame:
+#  - as they are: one line "aligned" in the log, no error;
+#  - moved: the error row_misaligned in the log and in NERV_HEALTH, naming the offset
+#    within 0.1 px and its direction, and every frame still comes out.
+source "$(dirname "$0")/lib.sh"
+enter_private_bus "$@"
+tmp=$(mktemp -d)
+trap 'stop_children; rm -rf "$tmp"' EXIT
+
+data="$NERV_ROOT/../shared/data/kitti_raw_0926_seq"
+[[ -d "$data" ]] || data=$(synthetic_sequence urban 11)
+sed '/^stereo_matcher:/a\  row_check_every_frames: 1' "$NERV_ROOT/config/pipeline.yaml" >"$tmp/check.yaml"
+grep -q '^  row_check_every_frames: 1' "$tmp/check.yaml" || fail "could not set row_check_every_frames"
+
+run() {  # run NAME DATA: 2 x the sequence at 10 Hz through the four services
+  "$NERV_ROOT/tools/nerv" run --data "$2" --repeat 2 --rate 10 --out "$tmp/$1" --config "$tmp/check.yaml" \
+    >"$tmp/$1.txt" 2>&1 || fail "$1: nerv run exited with $?: $(tail -n 3 "$tmp/$1.txt")"
+}
+matcher_errors() {  # matcher_errors NAME: the stereo_matcher's error count in summary.json
+  tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"errors":[0-9]*' | cut -d: -f2
+}
+
+run aligned "$data"
+line=$(grep "rectification check" "$tmp/aligned/logs/services.log" | head -n 1)
+[[ "$line" == *": aligned" ]] || fail "no 'aligned' verdict for the calibrated rig: '$line'"
+[[ "$(matcher_errors aligned)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
+pass "calibrated rig: $line"
+
+for rows in 1 -1.5; do
+  "$BIN/nerv_misalign" --data "$data" --out "$tmp/data_$rows" --rows "$rows" >/dev/null || fail "nerv_misalign --rows $rows"
+  run "moved_$rows" "$tmp/data_$rows"
+  line=$(grep "row_misaligned" "$tmp/moved_$rows/logs/services.log" | head -n 1)
+  [[ -n "$line" ]] || fail "rows moved by $rows: no row_misaligned error: $(grep rectification "$tmp/moved_$rows/logs/services.log")"
+  px=$(sed -E 's/.*rows lie ([0-9.]+) px (below|above).*/\1 \2/' <<<"$line")
+  want=below; [[ "$rows" == -* ]] && want=above
+  awk -v got="${px% *}" -v r="$rows" 'BEGIN { a = r < 0 ? -r : r; exit !(got > a - 0.1 && got < a + 0.1) }' \
+    || fail "rows moved by $rows, measured ${px% *} px: '$line'"
+  [[ "${px#* }" == "$want" ]] || fail "rows moved by $rows read as $px: '$line'"
+  (( $(matcher_errors "moved_$rows") >= 1 )) || fail "NERV_HEALTH of the stereo_matcher counts no error"
+  tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -q '"last_error":"row_misaligned:rectification' \
+    || fail "NERV_HEALTH's last_error is not the misalignment"
+  out=$(tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
+  in=$(tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
+  [[ "$out" == "$in" && "$in" -gt 0 ]] || fail "frames lost on the misaligned rig: $in in, $out out"
+  pass "right views moved by $rows rows: ${line#*row_misaligned: }; $out of $in frames out"
+done
+echo "3 passed, 0 failed"

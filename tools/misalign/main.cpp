@@ -1,0 +1,100 @@
+// nerv_misalign: a rectified sequence as a rig that lost its calibration gives it: the right
+// views moved down by a number of rows (a fraction allowed), the calibration file unchanged.
+// For measuring what a knocked or warped rig costs and testing that the stereo_matcher's
+// rectification check (docs/stereo.md "Is the rig still rectified?") notices.
+//
+//   nerv_misalign --data DIR --out DIR --rows PX [--frames N]
+//
+// Writes the plain layout: OUT/left (the left views as they are), OUT/right (moved by PX rows,
+// positive = down, bilinear, the rows moved in from outside repeat the border), OUT/calib.yaml
+// (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
+// disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
+// Exit 2 on bad arguments or data.
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "dataset.hpp"
+
+using namespace nerv;
+namespace fs = std::filesystem;
+
+namespace {
+
+int usage(const char* why) {
+  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR --rows PX [--frames N]\n", why);
+  return 2;
+}
+
+void writeCalibration(const std::string& path, const StereoCamera& c) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write " + path);
+  std::fprintf(f, "# rectified calibration as the rig was calibrated (nerv_misalign moved the right views)\n");
+  std::fprintf(f, "width: %d\nheight: %d\nfx: %.6f\nfy: %.6f\ncx: %.6f\ncy: %.6f\nbaseline_m: %.6f\n", c.width,
+               c.height, c.fx, c.fy, c.cx, c.cy, c.baseline_m);
+  std::fclose(f);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string data, out;
+  double rows = NAN;
+  int max_frames = -1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
+    const std::string v = argv[++i];
+    char* end = nullptr;
+    if (a == "--data") data = v;
+    else if (a == "--out") out = v;
+    else if (a == "--rows") rows = std::strtod(v.c_str(), &end);
+    else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+    else return usage(("unknown argument " + a).c_str());
+    if (end && *end) return usage(("not a number: " + a + " " + v).c_str());
+  }
+  if (data.empty() || out.empty()) return usage("--data and --out are required");
+  if (!std::isfinite(rows) || std::fabs(rows) > 100) return usage("--rows must be a number of rows within +-100");
+  try {
+    const Dataset ds = openDataset(data);
+    if (ds.frames.front().raw) throw DatasetError(data + " holds raw views: misalign a rectified sequence");
+    fs::create_directories(out + "/left");
+    fs::create_directories(out + "/right");
+    const bool labels = !ds.frames.front().label_path.empty();
+    if (labels) fs::create_directories(out + "/label_2");
+    const bool truth = !ds.frames.front().disp_gt_path.empty();
+    if (truth) fs::create_directories(out + "/disp_gt");
+    int n = 0;
+    for (const DatasetFrame& f : ds.frames) {
+      if (max_frames >= 0 && n >= max_frames) break;
+      const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_UNCHANGED);
+      const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_UNCHANGED);
+      if (left.empty() || right.empty()) throw DatasetError("cannot read " + f.left_path + " or " + f.right_path);
+      // Content at row y moves to row y + rows.
+      const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 0, 0, 1, rows);
+      cv::Mat moved;
+      cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+      if (!cv::imwrite(out + "/left/" + f.name + ".png", left) ||
+          !cv::imwrite(out + "/right/" + f.name + ".png", moved))
+        throw DatasetError("cannot write the images of " + f.name + " under " + out);
+      if (labels && fs::exists(f.label_path))
+        fs::copy_file(f.label_path, out + "/label_2/" + f.name + ".txt", fs::copy_options::overwrite_existing);
+      if (truth && fs::exists(f.disp_gt_path))
+        fs::copy_file(f.disp_gt_path, out + "/disp_gt/" + f.name + ".png", fs::copy_options::overwrite_existing);
+      ++n;
+    }
+    writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
+    if (fs::exists(data + "/extrinsics.txt"))
+      fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
+    std::printf("%d frames, right views moved by %+.2f rows: %s\n", n, rows, out.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nerv_misalign: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
