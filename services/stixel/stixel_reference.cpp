@@ -9,9 +9,10 @@ std::vector<Stixel> referenceStixels(const cv::Mat& disparity, const StereoCamer
                                      const GroundModel& g, const Params& p) {
   std::vector<Stixel> out;
   const double th = g.pitch_deg * M_PI / 180.0;
+  const double cos_th = std::cos(th), sin_th = std::sin(th);  // once, as any plain version would
   auto heightOverRoad = [&](int u, int v, float d) {
     const Point3 q = cam.toPoint(u, v, d);
-    return g.height_m - (q.y * std::cos(th) + q.z * std::sin(th));
+    return g.height_m - (q.y * cos_th + q.z * sin_th);
   };
   auto valid = [&](float d) { return std::isfinite(d) && d > 0 && d < p.max_disparity_px; };
   const int cw = p.column_width_px;
