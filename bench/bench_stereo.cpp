@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <chrono>
 #include <ctime>
@@ -117,8 +118,9 @@ int main(int argc, char** argv) {
     check_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   std::printf("rectification check on %s's disparity: %.2f ms (every 10th frame by default: %.2f ms a frame); "
-              "rows %+.2f px from %d points%s\n",
-              entries[checked].label.c_str(), median(check_ms), median(check_ms) / 10, offset.offset_px, offset.points,
+              "rows %+.2f px at the centre, up to %.2f px off, turned %.3f deg, from %d points%s\n",
+              entries[checked].label.c_str(), median(check_ms), median(check_ms) / 10, offset.offset_px,
+              offset.worst_px, std::atan(offset.slope_x) * 180 / 3.14159265358979, offset.points,
               offset.valid ? "" : " (no measurement)");
   return 0;
 }

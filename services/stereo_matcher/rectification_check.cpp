@@ -82,42 +82,99 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
   cv::calcOpticalFlowPyrLK(left, right, from, to, status, error, cv::Size(2 * r + 1, 2 * r + 1), 2,
                            cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 0.01),
                            cv::OPTFLOW_USE_INITIAL_FLOW);
-  std::vector<float> dy;
+  std::vector<float> dy, u, v;
   dy.reserve(from.size());
+  const float cx = 0.5f * static_cast<float>(left.cols), cy = 0.5f * static_cast<float>(left.rows);
   for (size_t i = 0; i < from.size(); ++i) {
     if (!status[i] || !std::isfinite(to[i].x) || !std::isfinite(to[i].y)) continue;
     if (std::abs(to[i].x - (from[i].x - disp[i])) > p.max_horizontal_miss_px) continue;
     dy.push_back(to[i].y - from[i].y);
+    u.push_back(from[i].x - cx);
+    v.push_back(from[i].y - cy);
   }
   out.points = static_cast<int>(dy.size());
   if (out.points < p.min_points) return out;
-  out.offset_px = medianOf(dy);
-  std::vector<float> dev(dy.size());
-  for (size_t i = 0; i < dy.size(); ++i) dev[i] = std::abs(dy[i] - out.offset_px);
-  out.spread_px = 1.4826f * medianOf(dev);
-  out.valid = true;
+  // The plane dy = a + b u + c v, iteratively reweighted least squares with Huber weights
+  // (k = 1.345 robust sigmas), from the median as a flat start.
+  double a = medianOf(dy), b = 0, c = 0;
+  std::vector<float> res(dy.size());
+  const auto residuals = [&] {
+    for (size_t i = 0; i < dy.size(); ++i) res[i] = static_cast<float>(dy[i] - (a + b * u[i] + c * v[i]));
+  };
+  for (int iter = 0; iter < 8; ++iter) {
+    residuals();
+    std::vector<float> abs_res(res.size());
+    for (size_t i = 0; i < res.size(); ++i) abs_res[i] = std::abs(res[i]);
+    const double scale = std::max(1e-3, 1.4826 * medianOf(abs_res));
+    cv::Matx33d ata = cv::Matx33d::zeros();
+    cv::Vec3d atb(0, 0, 0);
+    for (size_t i = 0; i < dy.size(); ++i) {
+      const double r = std::abs(res[i]) / scale, w = r <= 1.345 ? 1.0 : 1.345 / r;
+      const cv::Vec3d x(1.0, u[i], v[i]);
+      for (int j = 0; j < 3; ++j) {
+        atb[j] += w * x[j] * dy[i];
+        for (int k = 0; k < 3; ++k) ata(j, k) += w * x[j] * x[k];
+      }
+    }
+    cv::Vec3d sol;
+    if (!cv::solve(ata, atb, sol, cv::DECOMP_CHOLESKY)) break;  // points on a line: keep the last
+    a = sol[0], b = sol[1], c = sol[2];
+  }
+  residuals();
+  for (float& r : res) r = std::abs(r);
+  std::vector<float> model(dy.size());
+  for (size_t i = 0; i < dy.size(); ++i) model[i] = static_cast<float>(std::abs(a + b * u[i] + c * v[i]));
+  const size_t p90 = std::min(model.size() - 1, static_cast<size_t>(0.9 * static_cast<double>(model.size() - 1) + 0.5));
+  std::nth_element(model.begin(), model.begin() + static_cast<long>(p90), model.end());
+  out.worst_px = model[p90];
+  out.offset_px = static_cast<float>(a);
+  out.slope_x = static_cast<float>(b);
+  out.slope_y = static_cast<float>(c);
+  out.spread_px = 1.4826f * medianOf(res);
+  out.valid = std::isfinite(out.offset_px) && std::isfinite(out.slope_x) && std::isfinite(out.slope_y);
   return out;
 }
 
 bool RowOffsetMonitor::add(const RowOffset& m) {
   if (!m.valid) return false;
-  offsets_.push_back(m.offset_px);
-  points_.push_back(m.points);
-  while (static_cast<int>(offsets_.size()) > window_) offsets_.pop_front(), points_.pop_front();
+  checks_.push_back(m);
+  while (static_cast<int>(checks_.size()) > window_) checks_.pop_front();
   if (++since_verdict_ < window_) return false;
   since_verdict_ = 0;
   return true;
 }
 
-float RowOffsetMonitor::median() const { return medianOf({offsets_.begin(), offsets_.end()}); }
+RowOffset RowOffsetMonitor::median() const {
+  RowOffset m;
+  if (checks_.empty()) return m;
+  std::vector<float> a, b, c, worst, spread;
+  for (const RowOffset& r : checks_) {
+    a.push_back(r.offset_px), b.push_back(r.slope_x), c.push_back(r.slope_y);
+    worst.push_back(r.worst_px), spread.push_back(r.spread_px);
+  }
+  m.valid = true;
+  m.points = static_cast<int>(checks_.back().points);
+  m.offset_px = medianOf(a);
+  m.slope_x = medianOf(b);
+  m.slope_y = medianOf(c);
+  m.worst_px = medianOf(worst);
+  m.spread_px = medianOf(spread);
+  return m;
+}
 
 std::string RowOffsetMonitor::describe() const {
-  const float m = median();
-  const int lo = points_.empty() ? 0 : *std::min_element(points_.begin(), points_.end());
-  const int hi = points_.empty() ? 0 : *std::max_element(points_.begin(), points_.end());
-  char line[200];
-  std::snprintf(line, sizeof line, "the right view's rows lie %.2f px %s the left's (median of the last %d checks, %d-%d points each)",
-                std::abs(m), m >= 0 ? "below" : "above", samples(), lo, hi);
+  const RowOffset m = median();
+  int lo = 0, hi = 0;
+  for (size_t i = 0; i < checks_.size(); ++i) {
+    lo = i ? std::min(lo, checks_[i].points) : checks_[i].points;
+    hi = i ? std::max(hi, checks_[i].points) : checks_[i].points;
+  }
+  char line[260];
+  std::snprintf(line, sizeof line,
+                "the right view's rows lie %.2f px %s the left's at its centre and up to %.2f px off where it matches "
+                "(turned %.2f deg; median of the last %d checks, %d-%d points each)",
+                std::abs(m.offset_px), m.offset_px >= 0 ? "below" : "above", m.worst_px,
+                std::atan(m.slope_x) * 180 / CV_PI, samples(), lo, hi);
   return line;
 }
 

@@ -9,9 +9,16 @@
 // smaller eigenvalue of the gradients' structure tensor over the window: texture in both
 // directions, so the row can be measured) that have a disparity d, Lucas-Kanade
 // from (x, y) in the left view to the right view, started at (x - d, y); points whose
-// horizontal result strays from the disparity, or whose track failed, are left out. The
-// median vertical displacement is the offset: the row of a point in the right view
-// minus its row in the left (+1: the right view's content one row lower).
+// horizontal result strays from the disparity, or whose track failed, are left out. Each
+// point's vertical displacement (its row in the right view minus its row in the left; +1:
+// the right view's content one row lower) is fitted robustly (Huber, iteratively
+// reweighted) with a plane over the view, dy = a + b (x - W/2) + c (y - H/2): a camera
+// pitched against the other moves every row alike (a), one turned about its optical axis
+// moves the rows by an amount that grows across the view (b; 0.1 deg turns the rows of a
+// 1242 px view by 1.1 px at its edges while their median stays near 0), a different
+// vertical scale grows down the view (c). What the matcher suffers is the plane's |dy|
+// where it matches: the 90th percentile of |a + b u + c v| over the tracked points (the
+// view's corners are often sky or hood, where nothing is matched anyway).
 //
 // RowOffsetMonitor: the verdict over the last checks, so that one frame of glare or
 // motion blur does not raise it.
@@ -35,8 +42,11 @@ struct RowOffsetParams {
 struct RowOffset {
   bool valid = false;     // at least min_points points tracked
   int points = 0;         // points that passed
-  float offset_px = 0;    // median vertical displacement, right minus left [px]
-  float spread_px = 0;    // 1.4826 x median absolute deviation of the points' displacements [px]
+  float offset_px = 0;    // the plane at the view's centre (a), right minus left [px]
+  float slope_x = 0;      // b: change per column [px/px] (about the turn in radians)
+  float slope_y = 0;      // c: change per row [px/px]
+  float worst_px = 0;     // 90th percentile of the plane's |dy| at the tracked points [px]
+  float spread_px = 0;    // 1.4826 x median absolute deviation of the points from the plane [px]
 };
 
 // left, right: the rectified 8-bit gray views the matcher saw; disparity: its CV_32F
@@ -44,26 +54,27 @@ struct RowOffset {
 RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
                            const RowOffsetParams& params = {});
 
-// The median of the last `window` valid measurements, and whether it exceeds the limit.
+// The median of the last `window` valid measurements (each of a, b, c and the worst), and
+// whether the worst exceeds the limit.
 class RowOffsetMonitor {
  public:
   RowOffsetMonitor(int window, float max_offset_px) : window_(window < 1 ? 1 : window), max_(max_offset_px) {}
   // Adds a measurement (invalid ones are ignored) and returns true when a verdict is due:
   // every `window` valid measurements.
   bool add(const RowOffset& m);
-  int samples() const { return static_cast<int>(offsets_.size()); }
-  float median() const;                  // of the remembered measurements; 0 when none
-  bool misaligned() const { return samples() > 0 && std::abs(median()) > max_; }
-  // One line: "the right view's rows lie 0.82 px below the left's (median of the last 10
-  // checks, 143-201 points each)".
+  int samples() const { return static_cast<int>(checks_.size()); }
+  RowOffset median() const;  // each field the median of the remembered measurements
+  bool misaligned() const { return samples() > 0 && median().worst_px > max_; }
+  // One line: "the right view's rows lie 0.82 px below the left's at its centre and up to
+  // 0.95 px off where it matches (turned 0.01 deg; median of the last 10 checks, 143-201
+  // points each)".
   std::string describe() const;
 
  private:
   int window_;
   float max_;
   int since_verdict_ = 0;
-  std::deque<float> offsets_;
-  std::deque<int> points_;
+  std::deque<RowOffset> checks_;
 };
 
 }  // namespace nerv::stereo

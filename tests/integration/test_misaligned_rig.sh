@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # A rig that no longer matches its calibration: the real stereo_matcher compares the rows
 # of its two views (rectification_check.hpp) and says so. The KITTI 0926 frames (the
-# synthetic urban sequence when ../shared/data is absent) are played as they are and with
-# the right views moved by +1 and -1.5 rows (nerv_misalign, calibration unchanged), a check
-# on every frame:
+# synthetic urban sequence when ../shared/data is absent) are played as they are, with the
+# right views moved by +1 and -1.5 rows, and turned by 0.15 deg about the optical axis
+# (nerv_misalign, calibration unchanged), a check on every frame:
 #  - as they are: one line "aligned" in the log, no error;
 #  - moved: the error row_misaligned in the log and in NERV_HEALTH, naming the offset
-#    within 0.1 px and its direction, and every frame still comes out.
+#    within 0.15 px and its direction, and every frame still comes out;
+#  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
+#    0.02 deg and rows off by more than the limit where the view matches.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
@@ -31,22 +33,36 @@ line=$(grep "rectification check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$(matcher_errors aligned)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
 pass "calibrated rig: $line"
 
+check_run() {  # check_run NAME: the misalignment error was said, counted, and no frame was lost
+  line=$(grep "row_misaligned" "$tmp/$1/logs/services.log" | head -n 1)
+  [[ -n "$line" ]] || fail "$1: no row_misaligned error: $(grep rectification "$tmp/$1/logs/services.log")"
+  (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
+  tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:rectification' \
+    || fail "$1: NERV_HEALTH's last_error is not the misalignment"
+  out=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
+  in=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
+  [[ "$out" == "$in" && "$in" -gt 0 ]] || fail "$1: frames lost on the misaligned rig: $in in, $out out"
+}
+near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { exit !(a - b <= t && b - a <= t) }'; }
+
 for rows in 1 -1.5; do
   "$BIN/nerv_misalign" --data "$data" --out "$tmp/data_$rows" --rows "$rows" >/dev/null || fail "nerv_misalign --rows $rows"
   run "moved_$rows" "$tmp/data_$rows"
-  line=$(grep "row_misaligned" "$tmp/moved_$rows/logs/services.log" | head -n 1)
-  [[ -n "$line" ]] || fail "rows moved by $rows: no row_misaligned error: $(grep rectification "$tmp/moved_$rows/logs/services.log")"
-  px=$(sed -E 's/.*rows lie ([0-9.]+) px (below|above).*/\1 \2/' <<<"$line")
+  check_run "moved_$rows"
+  worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
+  side=$(sed -E 's/.*rows lie [0-9.]+ px (below|above).*/\1/' <<<"$line")
   want=below; [[ "$rows" == -* ]] && want=above
-  awk -v got="${px% *}" -v r="$rows" 'BEGIN { a = r < 0 ? -r : r; exit !(got > a - 0.1 && got < a + 0.1) }' \
-    || fail "rows moved by $rows, measured ${px% *} px: '$line'"
-  [[ "${px#* }" == "$want" ]] || fail "rows moved by $rows read as $px: '$line'"
-  (( $(matcher_errors "moved_$rows") >= 1 )) || fail "NERV_HEALTH of the stereo_matcher counts no error"
-  tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -q '"last_error":"row_misaligned:rectification' \
-    || fail "NERV_HEALTH's last_error is not the misalignment"
-  out=$(tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
-  in=$(tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
-  [[ "$out" == "$in" && "$in" -gt 0 ]] || fail "frames lost on the misaligned rig: $in in, $out out"
+  near "$worst" "${rows#-}" 0.15 || fail "rows moved by $rows, measured up to $worst px: '$line'"
+  [[ "$side" == "$want" ]] || fail "rows moved by $rows read as $side: '$line'"
   pass "right views moved by $rows rows: ${line#*row_misaligned: }; $out of $in frames out"
 done
-echo "3 passed, 0 failed"
+
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_turned" --roll-deg 0.15 >/dev/null || fail "nerv_misalign --roll-deg"
+run turned "$tmp/data_turned"
+check_run turned
+turn=$(sed -E 's/.*\(turned (-?[0-9.]+) deg.*/\1/' <<<"$line")
+worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
+near "$turn" 0.15 0.02 || fail "turned by 0.15 deg, read $turn deg: '$line'"
+awk -v w="$worst" 'BEGIN { exit !(w > 0.4) }' || fail "turned by 0.15 deg, rows up to only $worst px off: '$line'"
+pass "right views turned by 0.15 deg: ${line#*row_misaligned: }; $out of $in frames out"
+echo "4 passed, 0 failed"

@@ -3,10 +3,12 @@
 // For measuring what a knocked or warped rig costs and testing that the stereo_matcher's
 // rectification check (docs/stereo.md "Is the rig still rectified?") notices.
 //
-//   nerv_misalign --data DIR --out DIR --rows PX [--frames N]
+//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--frames N]
 //
-// Writes the plain layout: OUT/left (the left views as they are), OUT/right (moved by PX rows,
-// positive = down, bilinear, the rows moved in from outside repeat the border), OUT/calib.yaml
+// Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
+// about the principal point, positive = clockwise as seen from behind the camera, so points
+// right of it move down; then moved by PX rows, positive = down; bilinear, the pixels moved in
+// from outside repeat the border), OUT/calib.yaml
 // (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
 // disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
 // Exit 2 on bad arguments or data.
@@ -27,7 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 int usage(const char* why) {
-  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR --rows PX [--frames N]\n", why);
+  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--frames N]\n", why);
   return 2;
 }
 
@@ -44,7 +46,7 @@ void writeCalibration(const std::string& path, const StereoCamera& c) {
 
 int main(int argc, char** argv) {
   std::string data, out;
-  double rows = NAN;
+  double rows = 0, roll_deg = 0;
   int max_frames = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -54,12 +56,14 @@ int main(int argc, char** argv) {
     if (a == "--data") data = v;
     else if (a == "--out") out = v;
     else if (a == "--rows") rows = std::strtod(v.c_str(), &end);
+    else if (a == "--roll-deg") roll_deg = std::strtod(v.c_str(), &end);
     else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else return usage(("unknown argument " + a).c_str());
     if (end && *end) return usage(("not a number: " + a + " " + v).c_str());
   }
   if (data.empty() || out.empty()) return usage("--data and --out are required");
   if (!std::isfinite(rows) || std::fabs(rows) > 100) return usage("--rows must be a number of rows within +-100");
+  if (!std::isfinite(roll_deg) || std::fabs(roll_deg) > 10) return usage("--roll-deg must be within +-10");
   try {
     const Dataset ds = openDataset(data);
     if (ds.frames.front().raw) throw DatasetError(data + " holds raw views: misalign a rectified sequence");
@@ -75,8 +79,12 @@ int main(int argc, char** argv) {
       const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_UNCHANGED);
       const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_UNCHANGED);
       if (left.empty() || right.empty()) throw DatasetError("cannot read " + f.left_path + " or " + f.right_path);
-      // Content at row y moves to row y + rows.
-      const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 0, 0, 1, rows);
+      // Content at (x, y) moves to the point turned by roll_deg about (cx, cy), then rows lower:
+      // x' = cx + c (x - cx) - s (y - cy), y' = cy + s (x - cx) + c (y - cy) + rows.
+      const double th = roll_deg * CV_PI / 180, c = std::cos(th), sn = std::sin(th);
+      const double cx = f.camera.cx, cy = f.camera.cy;
+      const cv::Mat shift = (cv::Mat_<double>(2, 3) << c, -sn, cx - c * cx + sn * cy,  //
+                             sn, c, cy - sn * cx - c * cy + rows);
       cv::Mat moved;
       cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
       if (!cv::imwrite(out + "/left/" + f.name + ".png", left) ||
@@ -91,7 +99,8 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views moved by %+.2f rows: %s\n", n, rows, out.c_str());
+    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows: %s\n", n, roll_deg, rows,
+                out.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_misalign: %s\n", e.what());
     return 2;
