@@ -4,6 +4,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 
 #include "message_convert.hpp"
 #include "rectification.hpp"
@@ -47,7 +49,10 @@ int serve(ServiceConfig& config) {
   cv::Mat left, right, left_rect, right_rect, disparity, confidence;
   cv::Mat matched_left, matched_right;  // the gray views the matcher saw
   stereo::RowOffsetMonitor row_offsets(10, max_row_offset);
-  bool row_verdict_said = false;  // the first verdict is said either way, later ones when misaligned
+  // An aligned verdict is logged the first time and whenever the rows moved by 0.1 px or
+  // more since the last line, so a log shows a drift (heat, a loosening mount) before it
+  // becomes an error; misaligned verdicts are errors every time.
+  float row_worst_said = -1.0f;
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
   disparity_t out;
@@ -126,10 +131,11 @@ int serve(ServiceConfig& config) {
                                            ": the rig no longer matches its calibration (max_row_offset_px " +
                                            cv::format("%.2f", max_row_offset) +
                                            "); disparity and detections degrade, recalibrate it");
-        } else if (!row_verdict_said) {
+          row_worst_said = -1.0f;  // back within the limit: said again
+        } else if (row_worst_said < 0 || std::abs(row_offsets.median().worst_px - row_worst_said) >= 0.1f) {
           std::fprintf(stderr, "stereo_matcher: rectification check: %s: aligned\n", row_offsets.describe().c_str());
+          row_worst_said = row_offsets.median().worst_px;
         }
-        row_verdict_said = true;
       }
     }
   }, queue);

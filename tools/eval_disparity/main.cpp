@@ -11,7 +11,10 @@
 // scored with D1 (|d - gt| > 3 px and > 5 %), Middlebury (8-bit) with bad-2.0;
 // both after the KITTI devkit's background interpolation, with the density of
 // the estimate and "subpx", the mean |d - gt| over its valid pixels within 1 px
-// of the truth (subpixel accuracy). Exit 0 on success, 2 on bad arguments or unreadable input.
+// of the truth (subpixel accuracy). Matching here, it also prints the stereo_matcher's
+// rectification check over the frames (rectification_check.hpp): how far the right view's
+// rows are off, the median of the frames, so a badly rectified set shows before its scores
+// are blamed on a matcher. Exit 0 on success, 2 on bad arguments or unreadable input.
 #include <lcm/lcm-cpp.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -24,6 +27,7 @@
 
 #include "config.hpp"
 #include "pipeline_keys.hpp"
+#include "rectification_check.hpp"
 #include "disparity_metrics.hpp"
 #include "message_convert.hpp"
 #include "stereo_matcher.hpp"
@@ -144,6 +148,8 @@ int main(int argc, char** argv) {
       section.finish();
     }
     if (algorithms.empty()) algorithms.push_back(base.algorithm);
+    RowOffsetMonitor rows(static_cast<int>(frames.size()), 0.4f);  // on the first algorithm's disparity
+    bool rows_checked = false;
     for (const std::string& name : algorithms) {
       Params p = base;
       p.algorithm = name;
@@ -164,9 +170,16 @@ int main(int argc, char** argv) {
         const double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         totals.add(scoreFrame(disparity, gt, kind), ms, metricName(kind));
+        if (!rows_checked) rows.add(measureRowOffset(left, right, disparity));
       }
       printRow(matcher->name(), totals);
+      rows_checked = true;
     }
+    if (rows.samples() > 0)
+      std::printf("rectification check (the stereo_matcher's, on %d frames): %s%s\n", rows.samples(),
+                  rows.describe().c_str(), rows.misaligned() ? ": MISALIGNED beyond 0.40 px" : ": aligned");
+    else
+      std::printf("rectification check: no frame with enough textured points\n");
   } catch (const ConfigError& e) {
     return usage(e.what());
   }
