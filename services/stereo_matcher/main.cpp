@@ -10,6 +10,7 @@
 #include "message_convert.hpp"
 #include "rectification.hpp"
 #include "rectification_check.hpp"
+#include "view_order_check.hpp"
 #include "service_config.hpp"
 #include "stereo_matcher.hpp"
 
@@ -53,6 +54,7 @@ int serve(ServiceConfig& config) {
   // more since the last line, so a log shows a drift (heat, a loosening mount) before it
   // becomes an error; misaligned verdicts are errors every time.
   float row_worst_said = -1.0f;
+  int swapped_in_a_row = 0;  // view-order checks in a row that found the views swapped
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
   disparity_t out;
@@ -125,6 +127,17 @@ int serve(ServiceConfig& config) {
     if (row_check_every > 0 && node.framesIn() % row_check_every == 0) {
       const stereo::RowOffset m = stereo::measureRowOffset(matched_left, matched_right, disparity);
       node.count(m.valid ? "row_checks" : "row_checks_unmeasured");
+      // Too few matched points to measure the rows: are the views the right way round
+      // (view_order_check.hpp)? Only then, as a rig that matches needs no such check.
+      const stereo::ViewOrder order =
+          m.valid ? stereo::ViewOrder{} : stereo::measureViewOrder(matched_left, matched_right);
+      swapped_in_a_row = order.swapped ? swapped_in_a_row + 1 : 0;
+      if (swapped_in_a_row >= 2)  // two checks in a row: not one odd frame
+        node.error("views_swapped",
+                   cv::format("the left and right views look swapped: %.0f %% of %d tracked points lie farther right "
+                              "in the right view than in the left (the right way round they lie farther left); check "
+                              "which camera feeds which side (cables, driver, topics)",
+                              100.0 * order.share_rightward, order.votes));
       if (row_offsets.add(m)) {
         if (row_offsets.misaligned()) {
           node.error("row_misaligned", "rectification: " + row_offsets.describe() +

@@ -1,5 +1,7 @@
 #include "rectification_check.hpp"
 
+#include "textured_points.hpp"
+
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
@@ -29,49 +31,21 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
   if (left.empty() || left.type() != CV_8UC1 || right.size() != left.size() || right.type() != CV_8UC1 ||
       disparity.size() != left.size() || disparity.type() != CV_32FC1)
     return out;
-  // Grid points away from the border, where the window lies inside both views.
+  // The most textured grid points with a disparity whose match lies inside the right view.
   const int r = std::max(1, p.window_px / 2);
   const int margin = r + 2;
-  if (left.cols <= 2 * margin || left.rows <= 2 * margin) return out;
-  struct Candidate {
-    float score;
-    cv::Point2f at;
-    float d;
-  };
-  std::vector<Candidate> candidates;
-  const int step = std::max(2, p.grid_px);
-  for (int y = margin; y < left.rows - margin; y += step) {
-    const float* drow = disparity.ptr<float>(y);
-    for (int x = margin; x < left.cols - margin; x += step) {
-      const float d = drow[x];
-      if (!(d > 0) || x - d < margin) continue;
-      // Structure tensor of central differences over the window; its smaller eigenvalue.
-      double sxx = 0, syy = 0, sxy = 0;
-      for (int v = y - r; v <= y + r; ++v) {
-        const uchar* up = left.ptr<uchar>(v - 1);
-        const uchar* row = left.ptr<uchar>(v);
-        const uchar* down = left.ptr<uchar>(v + 1);
-        for (int u = x - r; u <= x + r; ++u) {
-          const int gx = row[u + 1] - row[u - 1], gy = down[u] - up[u];
-          sxx += gx * gx, syy += gy * gy, sxy += gx * gy;
-        }
-      }
-      const double half_trace = 0.5 * (sxx + syy), half_diff = 0.5 * (sxx - syy);
-      const double min_eig = half_trace - std::sqrt(half_diff * half_diff + sxy * sxy);
-      if (min_eig > 0) candidates.push_back({static_cast<float>(min_eig), cv::Point2f(x, y), d});
-    }
-  }
-  if (static_cast<int>(candidates.size()) > p.max_points) {
-    std::nth_element(candidates.begin(), candidates.begin() + p.max_points, candidates.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
-    candidates.resize(static_cast<size_t>(p.max_points));
-  }
+  const std::vector<cv::Point2f> points =
+      texturedPoints(left, {p.grid_px, p.window_px, p.max_points}, [&](int x, int y) {
+        const float d = disparity.at<float>(y, x);
+        return d > 0 && x - d >= margin;
+      });
   std::vector<cv::Point2f> from, to;
   std::vector<float> disp;
-  for (const Candidate& c : candidates) {
-    from.push_back(c.at);
-    to.push_back({c.at.x - c.d, c.at.y});
-    disp.push_back(c.d);
+  for (const cv::Point2f& c : points) {
+    const float d = disparity.at<float>(cvRound(c.y), cvRound(c.x));
+    from.push_back(c);
+    to.push_back({c.x - d, c.y});
+    disp.push_back(d);
   }
   if (static_cast<int>(from.size()) < p.min_points) {
     out.points = static_cast<int>(from.size());

@@ -9,6 +9,7 @@
 #    within 0.15 px and its direction, and every frame still comes out;
 #  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
 #    0.02 deg and rows off by more than the limit where the view matches;
+#  - swapped (crossed cables): the error views_swapped, not a row misalignment;
 #  - offline, nerv_eval_disparity prints the same check on a synthetic set and on it moved.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
@@ -66,6 +67,16 @@ worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
 near "$turn" 0.15 0.02 || fail "turned by 0.15 deg, read $turn deg: '$line'"
 awk -v w="$worst" 'BEGIN { exit !(w > 0.4) }' || fail "turned by 0.15 deg, rows up to only $worst px off: '$line'"
 pass "right views turned by 0.15 deg: ${line#*row_misaligned: }; $out of $in frames out"
+# Crossed cables: the views swapped. The rows cannot be measured (almost nothing matches),
+# so the view-order check runs and names it.
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_swapped" --swap >/dev/null || fail "nerv_misalign --swap"
+run swapped "$tmp/data_swapped"
+line=$(grep "views_swapped" "$tmp/swapped/logs/services.log" | head -n 1)
+[[ -n "$line" ]] || fail "swapped views: no views_swapped error: $(grep -i "stereo_matcher" "$tmp/swapped/logs/services.log" | head -n 3)"
+(( $(matcher_errors swapped) >= 1 )) || fail "swapped views: NERV_HEALTH of the stereo_matcher counts no error"
+grep -q "row_misaligned" "$tmp/swapped/logs/services.log" && fail "swapped views also reported as misaligned rows"
+pass "left and right swapped: ${line#*views_swapped: }"
+
 # Offline, on a set with ground truth: nerv_eval_disparity prints the same check.
 synth=$(synthetic_sequence urban 6)
 "$BIN/nerv_misalign" --data "$synth" --out "$tmp/synth_moved" --rows 1 >/dev/null || fail "nerv_misalign on $synth"
@@ -76,4 +87,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "5 passed, 0 failed"
+echo "6 passed, 0 failed"

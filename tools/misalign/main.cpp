@@ -3,12 +3,13 @@
 // For measuring what a knocked or warped rig costs and testing that the stereo_matcher's
 // rectification check (docs/stereo.md "Is the rig still rectified?") notices.
 //
-//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--frames N]
+//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--frames N]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
 // right of it move down; then moved by PX rows, positive = down; bilinear, the pixels moved in
-// from outside repeat the border), OUT/calib.yaml
+// from outside repeat the border; --swap then writes each view as the other, as a rig with its
+// cables or topics crossed delivers them), OUT/calib.yaml
 // (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
 // disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
 // Exit 2 on bad arguments or data.
@@ -48,8 +49,13 @@ int main(int argc, char** argv) {
   std::string data, out;
   double rows = 0, roll_deg = 0;
   int max_frames = -1;
+  bool swap = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--swap") {
+      swap = true;
+      continue;
+    }
     if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
     const std::string v = argv[++i];
     char* end = nullptr;
@@ -87,8 +93,8 @@ int main(int argc, char** argv) {
                              sn, c, cy - sn * cx - c * cy + rows);
       cv::Mat moved;
       cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-      if (!cv::imwrite(out + "/left/" + f.name + ".png", left) ||
-          !cv::imwrite(out + "/right/" + f.name + ".png", moved))
+      if (!cv::imwrite(out + "/left/" + f.name + ".png", swap ? moved : left) ||
+          !cv::imwrite(out + "/right/" + f.name + ".png", swap ? left : moved))
         throw DatasetError("cannot write the images of " + f.name + " under " + out);
       if (labels && fs::exists(f.label_path))
         fs::copy_file(f.label_path, out + "/label_2/" + f.name + ".txt", fs::copy_options::overwrite_existing);
@@ -99,8 +105,8 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows: %s\n", n, roll_deg, rows,
-                out.c_str());
+    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s: %s\n", n, roll_deg, rows,
+                swap ? ", then left and right swapped" : "", out.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_misalign: %s\n", e.what());
     return 2;

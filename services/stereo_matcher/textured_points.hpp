@@ -1,0 +1,27 @@
+// The most textured points of a grid over a gray image: where a patch can be followed
+// into the other view in both directions. The score is the smaller eigenvalue of the
+// structure tensor of the central differences over a square window (Shi and Tomasi's
+// corner measure), which is large only where the image changes both along and across
+// rows. Used by the stereo_matcher's rectification and view-order checks.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace nerv::stereo {
+
+struct TexturedPointsParams {
+  int grid_px = 12;      // candidates every grid_px columns and rows
+  int window_px = 11;    // square window of the score (odd); candidates keep it, plus 2 px, inside the image
+  int max_points = 200;  // the highest scores kept
+};
+
+// The candidates that `usable(x, y)` accepts (all when empty) with a positive score, the
+// max_points highest first-come among equals, in no particular order. image: CV_8UC1;
+// anything else, or an image smaller than two windows, gives none.
+std::vector<cv::Point2f> texturedPoints(const cv::Mat& image, const TexturedPointsParams& params,
+                                        const std::function<bool(int x, int y)>& usable = {});
+
+}  // namespace nerv::stereo
