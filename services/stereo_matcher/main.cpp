@@ -9,6 +9,7 @@
 
 #include "message_convert.hpp"
 #include "rectification.hpp"
+#include "frozen_view.hpp"
 #include "rectification_check.hpp"
 #include "view_order_check.hpp"
 #include "service_config.hpp"
@@ -55,6 +56,7 @@ int serve(ServiceConfig& config) {
   // becomes an error; misaligned verdicts are errors every time.
   float row_worst_said = -1.0f;
   int swapped_in_a_row = 0;  // view-order checks in a row that found the views swapped
+  stereo::FrozenViewCheck frozen(3);  // one view repeating while the other changes (frozen_view.hpp)
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
   disparity_t out;
@@ -90,6 +92,16 @@ int serve(ServiceConfig& config) {
         left.rows != frame.calib.height)
       return node.error("size_mismatch", what + "decoded images do not match the calibration size");
     node.countIn();
+    // A camera that stopped: every frame of it counted, the error said when it starts and
+    // every 100 frames while it lasts. The frame is still matched.
+    if (const std::string stopped = frozen.push(left, right); !stopped.empty()) {
+      node.count("frozen_view_frames");
+      if (frozen.framesStopped() == 3 || frozen.framesStopped() % 100 == 0)
+        node.error("view_frozen", what + "the " + stopped + " camera's image has not changed for " +
+                                      std::to_string(frozen.framesStopped()) +
+                                      " frames while the other's has: a stopped camera or driver; the disparity "
+                                      "compares images taken at different times");
+    }
 
     const auto start = std::chrono::steady_clock::now();
     out.header = frame.header;

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# A rig that no longer matches its calibration: the real stereo_matcher compares the rows
-# of its two views (rectification_check.hpp) and says so. The KITTI 0926 frames (the
+# A rig that no longer matches its calibration, or whose cameras are crossed or stopped: the
+# real stereo_matcher compares its two views (rectification_check.hpp, view_order_check.hpp,
+# frozen_view.hpp) and says so. The KITTI 0926 frames (the
 # synthetic urban sequence when ../shared/data is absent) are played as they are, with the
 # right views moved by +1 and -1.5 rows, and turned by 0.15 deg about the optical axis
 # (nerv_misalign, calibration unchanged), a check on every frame:
@@ -10,6 +11,7 @@
 #  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
 #    0.02 deg and rows off by more than the limit where the view matches;
 #  - swapped (crossed cables): the error views_swapped, not a row misalignment;
+#  - the right camera stopped (its image repeated): the error view_frozen;
 #  - offline, nerv_eval_disparity prints the same check on a synthetic set and on it moved.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
@@ -77,6 +79,15 @@ line=$(grep "views_swapped" "$tmp/swapped/logs/services.log" | head -n 1)
 grep -q "row_misaligned" "$tmp/swapped/logs/services.log" && fail "swapped views also reported as misaligned rows"
 pass "left and right swapped: ${line#*views_swapped: }"
 
+# A stopped right camera: its image repeats from the fifth frame on while the left runs.
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_frozen" --freeze-right 4 >/dev/null || fail "nerv_misalign --freeze-right"
+run frozen "$tmp/data_frozen"
+line=$(grep "view_frozen" "$tmp/frozen/logs/services.log" | head -n 1)
+[[ "$line" == *"the right camera's image has not changed for 3 frames"* ]] \
+  || fail "stopped right camera: no view_frozen error: '$line' $(grep -i "stereo_matcher" "$tmp/frozen/logs/services.log" | head -n 3)"
+grep -q "view_frozen" "$tmp/aligned/logs/services.log" && fail "the recorded rig reported a stopped camera"
+pass "right camera stopped: ${line#*view_frozen: }"
+
 # Offline, on a set with ground truth: nerv_eval_disparity prints the same check.
 synth=$(synthetic_sequence urban 6)
 "$BIN/nerv_misalign" --data "$synth" --out "$tmp/synth_moved" --rows 1 >/dev/null || fail "nerv_misalign on $synth"
@@ -87,4 +98,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "6 passed, 0 failed"
+echo "7 passed, 0 failed"

@@ -3,19 +3,21 @@
 // For measuring what a knocked or warped rig costs and testing that the stereo_matcher's
 // rectification check (docs/stereo.md "Is the rig still rectified?") notices.
 //
-//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--frames N]
+//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--frames N]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
 // right of it move down; then moved by PX rows, positive = down; bilinear, the pixels moved in
 // from outside repeat the border; --swap then writes each view as the other, as a rig with its
-// cables or topics crossed delivers them), OUT/calib.yaml
+// cables or topics crossed delivers them; --freeze-right K repeats the right view of the K-th
+// frame (from 0) in every later frame, as a stopped camera or driver delivers it), OUT/calib.yaml
 // (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
 // disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
 // Exit 2 on bad arguments or data.
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -48,7 +50,7 @@ void writeCalibration(const std::string& path, const StereoCamera& c) {
 int main(int argc, char** argv) {
   std::string data, out;
   double rows = 0, roll_deg = 0;
-  int max_frames = -1;
+  int max_frames = -1, freeze_right = -1;
   bool swap = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -64,6 +66,7 @@ int main(int argc, char** argv) {
     else if (a == "--rows") rows = std::strtod(v.c_str(), &end);
     else if (a == "--roll-deg") roll_deg = std::strtod(v.c_str(), &end);
     else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+    else if (a == "--freeze-right") freeze_right = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else return usage(("unknown argument " + a).c_str());
     if (end && *end) return usage(("not a number: " + a + " " + v).c_str());
   }
@@ -82,8 +85,11 @@ int main(int argc, char** argv) {
     int n = 0;
     for (const DatasetFrame& f : ds.frames) {
       if (max_frames >= 0 && n >= max_frames) break;
+      const DatasetFrame& rf = freeze_right >= 0 && n > freeze_right
+                                   ? ds.frames[std::min<size_t>(static_cast<size_t>(freeze_right), ds.frames.size() - 1)]
+                                   : f;
       const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_UNCHANGED);
-      const cv::Mat right = cv::imread(f.right_path, cv::IMREAD_UNCHANGED);
+      const cv::Mat right = cv::imread(rf.right_path, cv::IMREAD_UNCHANGED);
       if (left.empty() || right.empty()) throw DatasetError("cannot read " + f.left_path + " or " + f.right_path);
       // Content at (x, y) moves to the point turned by roll_deg about (cx, cy), then rows lower:
       // x' = cx + c (x - cx) - s (y - cy), y' = cy + s (x - cx) + c (y - cy) + rows.
@@ -105,7 +111,8 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s: %s\n", n, roll_deg, rows,
+    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s%s: %s\n", n, roll_deg, rows,
+                freeze_right >= 0 ? cv::format(", frozen from frame %d on", freeze_right).c_str() : "",
                 swap ? ", then left and right swapped" : "", out.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_misalign: %s\n", e.what());
