@@ -1,7 +1,8 @@
-// nerv_misalign: a rectified sequence as a rig that lost its calibration gives it: the right
-// views moved down by a number of rows (a fraction allowed), the calibration file unchanged.
-// For measuring what a knocked or warped rig costs and testing that the stereo_matcher's
-// rectification check (docs/stereo.md "Is the rig still rectified?") notices.
+// nerv_misalign: a rectified sequence as a faulty rig delivers it, the calibration file
+// unchanged: the right views moved by rows or turned (a rig that lost its calibration), the
+// views swapped (crossed cables or topics), the right view stopped (a stuck camera). For
+// measuring what each costs and testing that the stereo_matcher's checks notice (docs/stereo.md
+// "Is the rig still rectified?", "Are the views the right way round?", "Has a camera stopped?").
 //
 //   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--frames N]
 //
