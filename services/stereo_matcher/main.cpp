@@ -7,13 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "frozen_view.hpp"
 #include "message_convert.hpp"
 #include "rectification.hpp"
-#include "frozen_view.hpp"
 #include "rectification_check.hpp"
-#include "view_order_check.hpp"
 #include "service_config.hpp"
 #include "stereo_matcher.hpp"
+#include "view_order_check.hpp"
 
 using namespace nerv;
 
