@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "blank_view.hpp"
 #include "frozen_view.hpp"
 #include "message_convert.hpp"
 #include "rectification.hpp"
@@ -56,6 +57,7 @@ int serve(ServiceConfig& config) {
   // becomes an error; misaligned verdicts are errors every time.
   float row_worst_said = -1.0f;
   int swapped_in_a_row = 0;  // view-order checks in a row that found the views swapped
+  int blank_in_a_row = 0;    // checks in a row that found one view blank
   int64_t row_checks_done = 0;
   stereo::FrozenViewCheck frozen(3);  // one view repeating while the other changes (frozen_view.hpp)
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
@@ -143,10 +145,21 @@ int serve(ServiceConfig& config) {
       ++row_checks_done;
       const stereo::RowOffset m = stereo::measureRowOffset(matched_left, matched_right, disparity);
       node.count(m.valid ? "row_checks" : "row_checks_unmeasured");
-      // Too few matched points to measure the rows: are the views the right way round
-      // (view_order_check.hpp)? Only then, as a rig that matches needs no such check.
-      const stereo::ViewOrder order =
-          m.valid ? stereo::ViewOrder{} : stereo::measureViewOrder(matched_left, matched_right);
+      // Too few matched points to measure the rows: does one view show nothing
+      // (blank_view.hpp), else are the views the right way round (view_order_check.hpp)?
+      // Only then, as a rig that matches needs neither.
+      const stereo::ViewTexture texture =
+          m.valid ? stereo::ViewTexture{} : stereo::compareViewTexture(matched_left, matched_right);
+      blank_in_a_row = texture.blank.empty() ? 0 : blank_in_a_row + 1;
+      if (blank_in_a_row >= 2)
+        node.error("view_blank", cv::format("the %s view shows almost no texture (%d textured points against the "
+                                            "other's %d): a lens cap, a covered, fogged or iced lens, or a dead "
+                                            "sensor",
+                                            texture.blank.c_str(), texture.blank == "left" ? texture.left : texture.right,
+                                            texture.blank == "left" ? texture.right : texture.left));
+      const stereo::ViewOrder order = m.valid || !texture.blank.empty()
+                                          ? stereo::ViewOrder{}
+                                          : stereo::measureViewOrder(matched_left, matched_right);
       swapped_in_a_row = order.swapped ? swapped_in_a_row + 1 : 0;
       if (swapped_in_a_row >= 2)  // two checks in a row: not one odd frame
         node.error("views_swapped",

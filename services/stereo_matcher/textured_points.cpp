@@ -34,7 +34,7 @@ std::vector<cv::Point2f> texturedPoints(const cv::Mat& image, const TexturedPoin
       }
       const double half_trace = 0.5 * (sxx + syy), half_diff = 0.5 * (sxx - syy);
       const double min_eig = half_trace - std::sqrt(half_diff * half_diff + sxy * sxy);
-      if (min_eig > 0) candidates.push_back({static_cast<float>(min_eig), cv::Point2f(x, y)});
+      if (min_eig > std::max(0.0, p.min_score)) candidates.push_back({static_cast<float>(min_eig), cv::Point2f(x, y)});
     }
   if (static_cast<int>(candidates.size()) > p.max_points) {
     std::nth_element(candidates.begin(), candidates.begin() + p.max_points, candidates.end(),

@@ -16,9 +16,10 @@ struct TexturedPointsParams {
   int grid_px = 12;      // candidates every grid_px columns and rows
   int window_px = 11;    // square window of the score (odd); candidates keep it, plus 2 px, inside the image
   int max_points = 200;  // the highest scores kept
+  double min_score = 0;  // only scores above this (the smaller eigenvalue, summed squared gray steps)
 };
 
-// The candidates that `usable(x, y)` accepts (all when empty) with a positive score, the
+// The candidates that `usable(x, y)` accepts (all when empty) with a score above min_score, the
 // max_points highest first-come among equals, in no particular order. image: CV_8UC1;
 // anything else, or an image smaller than two windows, gives none.
 std::vector<cv::Point2f> texturedPoints(const cv::Mat& image, const TexturedPointsParams& params,

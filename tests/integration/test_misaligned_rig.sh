@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# A rig that no longer matches its calibration, or whose cameras are crossed or stopped: the
+# A rig that no longer matches its calibration, or whose cameras are crossed, stopped or blind: the
 # real stereo_matcher compares its two views (rectification_check.hpp, view_order_check.hpp,
-# frozen_view.hpp) and says so. The KITTI 0926 frames (the
+# frozen_view.hpp, blank_view.hpp) and says so. The KITTI 0926 frames (the
 # synthetic urban sequence when ../shared/data is absent) are played as they are, with the
 # right views moved by +1 and -1.5 rows, and turned by 0.15 deg about the optical axis
 # (nerv_misalign, calibration unchanged), with the default config (the first 10 row checks
@@ -13,6 +13,7 @@
 #    0.02 deg and rows off by more than the limit where the view matches;
 #  - swapped (crossed cables): the error views_swapped, not a row misalignment;
 #  - the right camera stopped (its image repeated): the error view_frozen;
+#  - the right lens fogged (its view blurred to nothing): the error view_blank;
 #  - offline, nerv_eval_disparity prints the same check on a synthetic set and on it moved.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
@@ -87,6 +88,15 @@ line=$(grep "view_frozen" "$tmp/frozen/logs/services.log" | head -n 1)
 grep -q "view_frozen" "$tmp/aligned/logs/services.log" && fail "the recorded rig reported a stopped camera"
 pass "right camera stopped: ${line#*view_frozen: }"
 
+# A fogged right lens: its view blurred to nothing. Named as blank, not as swapped.
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_blank" --blank-right >/dev/null || fail "nerv_misalign --blank-right"
+run blank "$tmp/data_blank"
+line=$(grep "view_blank" "$tmp/blank/logs/services.log" | head -n 1)
+[[ "$line" == *"the right view shows almost no texture"* ]] \
+  || fail "fogged right lens: no view_blank error: '$line' $(grep -i "stereo_matcher" "$tmp/blank/logs/services.log" | head -n 3)"
+grep -q "views_swapped" "$tmp/blank/logs/services.log" && fail "a blank view reported as swapped"
+pass "right lens fogged: ${line#*view_blank: }"
+
 # Offline, on a set with ground truth: nerv_eval_disparity prints the same check.
 synth=$(synthetic_sequence urban 6)
 "$BIN/nerv_misalign" --data "$synth" --out "$tmp/synth_moved" --rows 1 >/dev/null || fail "nerv_misalign on $synth"
@@ -97,4 +107,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "7 passed, 0 failed"
+echo "8 passed, 0 failed"

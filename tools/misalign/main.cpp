@@ -1,17 +1,21 @@
 // nerv_misalign: a rectified sequence as a faulty rig delivers it, the calibration file
 // unchanged: the right views moved by rows or turned (a rig that lost its calibration), the
-// views swapped (crossed cables or topics), the right view stopped (a stuck camera). For
+// views swapped (crossed cables or topics), the right view stopped (a stuck camera) or blank
+// (a fogged lens). For
 // measuring what each costs and testing that the stereo_matcher's checks notice (docs/stereo.md
-// "Is the rig still rectified?", "Are the views the right way round?", "Has a camera stopped?").
+// "Is the rig still rectified?", "Are the views the right way round?", "Has a camera stopped?",
+// "Does one view show nothing?").
 //
-//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--frames N]
+//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right]
+//                 [--frames N]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
 // right of it move down; then moved by PX rows, positive = down; bilinear, the pixels moved in
 // from outside repeat the border; --swap then writes each view as the other, as a rig with its
 // cables or topics crossed delivers them; --freeze-right K repeats the right view of the K-th
-// frame (from 0) in every later frame, as a stopped camera or driver delivers it), OUT/calib.yaml
+// frame (from 0) in every later frame, as a stopped camera or driver delivers it; --blank-right
+// replaces the right views by a fogged lens's: blurred to nothing, sigma 8 px), OUT/calib.yaml
 // (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
 // disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
 // Exit 2 on bad arguments or data.
@@ -52,11 +56,11 @@ int main(int argc, char** argv) {
   std::string data, out;
   double rows = 0, roll_deg = 0;
   int max_frames = -1, freeze_right = -1;
-  bool swap = false;
+  bool swap = false, blank_right = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--swap") {
-      swap = true;
+    if (a == "--swap" || a == "--blank-right") {
+      (a == "--swap" ? swap : blank_right) = true;
       continue;
     }
     if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
@@ -100,6 +104,7 @@ int main(int argc, char** argv) {
                              sn, c, cy - sn * cx - c * cy + rows);
       cv::Mat moved;
       cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+      if (blank_right) cv::GaussianBlur(moved, moved, cv::Size(0, 0), 8);
       if (!cv::imwrite(out + "/left/" + f.name + ".png", swap ? moved : left) ||
           !cv::imwrite(out + "/right/" + f.name + ".png", swap ? left : moved))
         throw DatasetError("cannot write the images of " + f.name + " under " + out);
@@ -112,8 +117,9 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s%s: %s\n", n, roll_deg, rows,
+    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s%s%s: %s\n", n, roll_deg, rows,
                 freeze_right >= 0 ? cv::format(", frozen from frame %d on", freeze_right).c_str() : "",
+                blank_right ? ", blurred to nothing" : "",
                 swap ? ", then left and right swapped" : "", out.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_misalign: %s\n", e.what());
