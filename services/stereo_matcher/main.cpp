@@ -141,7 +141,10 @@ int serve(ServiceConfig& config) {
 
     // The first 10 checks on every frame, so the first verdict comes a second after start
     // (at 10 Hz), before a drive records bad disparity; then every row_check_every frames.
-    if (row_check_every > 0 && (row_checks_done < 10 || node.framesIn() % row_check_every == 0)) {
+    // Not while one view repeats (frozen_view.hpp): the two images are from different
+    // moments, and their rows would differ by the vehicle's motion, not the rig's.
+    if (row_check_every > 0 && frozen.framesStopped() == 0 &&
+        (row_checks_done < 10 || node.framesIn() % row_check_every == 0)) {
       ++row_checks_done;
       const stereo::RowOffset m = stereo::measureRowOffset(matched_left, matched_right, disparity);
       node.count(m.valid ? "row_checks" : "row_checks_unmeasured");

@@ -69,33 +69,26 @@ worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
 near "$turn" 0.15 0.02 || fail "turned by 0.15 deg, read $turn deg: '$line'"
 awk -v w="$worst" 'BEGIN { exit !(w > 0.4) }' || fail "turned by 0.15 deg, rows up to only $worst px off: '$line'"
 pass "right views turned by 0.15 deg: ${line#*row_misaligned: }; $out of $in frames out"
+# A fault that leaves the rows unmeasurable or repeats a view, named by its own error:
+# named_fault NAME "nerv_misalign options" ERROR "text the error must hold" ERROR_IT_IS_NOT
+named_fault() {
+  # shellcheck disable=SC2086
+  "$BIN/nerv_misalign" --data "$data" --out "$tmp/data_$1" $2 >/dev/null || fail "nerv_misalign $2"
+  run "$1" "$tmp/data_$1"
+  line=$(grep "$3" "$tmp/$1/logs/services.log" | head -n 1)
+  [[ "$line" == *"$4"* ]] || fail "$1: no $3 error: '$line' $(grep -i "stereo_matcher" "$tmp/$1/logs/services.log" | head -n 3)"
+  (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
+  grep -q "$5" "$tmp/$1/logs/services.log" && fail "$1 also reported as $5"
+  grep -q "$3" "$tmp/aligned/logs/services.log" && fail "the recorded rig reported $3"
+  pass "$1: ${line#*$3: }"
+}
 # Crossed cables: the views swapped. The rows cannot be measured (almost nothing matches),
 # so the view-order check runs and names it.
-"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_swapped" --swap >/dev/null || fail "nerv_misalign --swap"
-run swapped "$tmp/data_swapped"
-line=$(grep "views_swapped" "$tmp/swapped/logs/services.log" | head -n 1)
-[[ -n "$line" ]] || fail "swapped views: no views_swapped error: $(grep -i "stereo_matcher" "$tmp/swapped/logs/services.log" | head -n 3)"
-(( $(matcher_errors swapped) >= 1 )) || fail "swapped views: NERV_HEALTH of the stereo_matcher counts no error"
-grep -q "row_misaligned" "$tmp/swapped/logs/services.log" && fail "swapped views also reported as misaligned rows"
-pass "left and right swapped: ${line#*views_swapped: }"
-
+named_fault swapped --swap views_swapped "the left and right views look swapped" row_misaligned
 # A stopped right camera: its image repeats from the fifth frame on while the left runs.
-"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_frozen" --freeze-right 4 >/dev/null || fail "nerv_misalign --freeze-right"
-run frozen "$tmp/data_frozen"
-line=$(grep "view_frozen" "$tmp/frozen/logs/services.log" | head -n 1)
-[[ "$line" == *"the right camera's image has not changed for 3 frames"* ]] \
-  || fail "stopped right camera: no view_frozen error: '$line' $(grep -i "stereo_matcher" "$tmp/frozen/logs/services.log" | head -n 3)"
-grep -q "view_frozen" "$tmp/aligned/logs/services.log" && fail "the recorded rig reported a stopped camera"
-pass "right camera stopped: ${line#*view_frozen: }"
-
+named_fault frozen "--freeze-right 4" view_frozen "the right camera's image has not changed for 3 frames" row_misaligned
 # A fogged right lens: its view blurred to nothing. Named as blank, not as swapped.
-"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_blank" --blank-right >/dev/null || fail "nerv_misalign --blank-right"
-run blank "$tmp/data_blank"
-line=$(grep "view_blank" "$tmp/blank/logs/services.log" | head -n 1)
-[[ "$line" == *"the right view shows almost no texture"* ]] \
-  || fail "fogged right lens: no view_blank error: '$line' $(grep -i "stereo_matcher" "$tmp/blank/logs/services.log" | head -n 3)"
-grep -q "views_swapped" "$tmp/blank/logs/services.log" && fail "a blank view reported as swapped"
-pass "right lens fogged: ${line#*view_blank: }"
+named_fault blank --blank-right view_blank "the right view shows almost no texture" views_swapped
 
 # Offline, on a set with ground truth: nerv_eval_disparity prints the same check.
 synth=$(synthetic_sequence urban 6)
