@@ -4,17 +4,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 
-#include "blank_view.hpp"
-#include "frozen_view.hpp"
 #include "message_convert.hpp"
 #include "rectification.hpp"
-#include "rectification_check.hpp"
+#include "rig_check.hpp"
 #include "service_config.hpp"
 #include "stereo_matcher.hpp"
-#include "view_order_check.hpp"
 
 using namespace nerv;
 
@@ -35,15 +31,16 @@ int serve(ServiceConfig& config) {
   config.section().get("queue", queue, 1, 100);
   bool publish_confidence = true;
   config.section().get("publish_confidence", publish_confidence);
-  // Is the rig still rectified (rectification_check.hpp)? Every this many frames the
-  // rows of the two views are compared, after the frame's DISPARITY is out (about 2 ms);
-  // 0 = never. The median of the last 10 checks beyond max_row_offset_px is an error.
-  int row_check_every = 10;
-  config.section().get("row_check_every_frames", row_check_every, 0, 100000);
-  // Measured on urban seed 11 (nerv_misalign, nerv_eval_disparity): D1 3.2 % aligned,
-  // 3.6 % at 0.25 px, 5.5 % at 0.5 px, 17 % at 1 px. KITTI 2015 frame 5 sits at 0.19 px.
-  float max_row_offset = 0.4f;
-  config.section().get("max_row_offset_px", max_row_offset, 0.05, 100.0);
+  // The rig's checks (rig_check.hpp): a stopped camera on every frame; the rows (is the rig
+  // still rectified?) on the first 10 frames, then every row_check_every_frames (0 = never),
+  // after the frame's DISPARITY is out, about 1.5 ms; and when the rows cannot be measured,
+  // a blank view or swapped views. The median of the last 10 row checks beyond
+  // max_row_offset_px is an error. Measured on urban seed 11 (nerv_misalign,
+  // nerv_eval_disparity): D1 3.2 % aligned, 3.6 % at 0.25 px, 5.5 % at 0.5 px, 17 % at 1 px.
+  // KITTI 2015 frame 5 sits at 0.19 px.
+  stereo::RigCheckParams rig_params;
+  config.section().get("row_check_every_frames", rig_params.check_every, 0, 100000);
+  config.section().get("max_row_offset_px", rig_params.max_row_offset_px, 0.05, 100.0);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -51,15 +48,14 @@ int serve(ServiceConfig& config) {
   Rectifier rectifier;
   cv::Mat left, right, left_rect, right_rect, disparity, confidence;
   cv::Mat matched_left, matched_right;  // the gray views the matcher saw
-  stereo::RowOffsetMonitor row_offsets(10, max_row_offset);
-  // An aligned verdict is logged the first time and whenever the rows moved by 0.1 px or
-  // more since the last line, so a log shows a drift (heat, a loosening mount) before it
-  // becomes an error; misaligned verdicts are errors every time.
-  float row_worst_said = -1.0f;
-  int swapped_in_a_row = 0;  // view-order checks in a row that found the views swapped
-  int blank_in_a_row = 0;    // checks in a row that found one view blank
-  int64_t row_checks_done = 0;
-  stereo::FrozenViewCheck frozen(3);  // one view repeating while the other changes (frozen_view.hpp)
+  stereo::RigCheck rig(rig_params);
+  const auto report = [&](const std::vector<stereo::RigFinding>& findings, const std::string& prefix) {
+    for (const stereo::RigFinding& f : findings) {
+      if (f.kind == stereo::RigFinding::Kind::Count) node.count(f.name);
+      else if (f.kind == stereo::RigFinding::Kind::Error) node.error(f.name, prefix + f.message);
+      else std::fprintf(stderr, "stereo_matcher: %s\n", f.message.c_str());
+    }
+  };
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
   disparity_t out;
@@ -95,16 +91,7 @@ int serve(ServiceConfig& config) {
         left.rows != frame.calib.height)
       return node.error("size_mismatch", what + "decoded images do not match the calibration size");
     node.countIn();
-    // A camera that stopped: every frame of it counted, the error said when it starts and
-    // every 100 frames while it lasts. The frame is still matched.
-    if (const std::string stopped = frozen.push(left, right); !stopped.empty()) {
-      node.count("frozen_view_frames");
-      if (frozen.framesStopped() == 3 || frozen.framesStopped() % 100 == 0)
-        node.error("view_frozen", what + "the " + stopped + " camera's image has not changed for " +
-                                      std::to_string(frozen.framesStopped()) +
-                                      " frames while the other's has: a stopped camera or driver; the disparity "
-                                      "compares images taken at different times");
-    }
+    report(rig.beforeMatching(left, right), what);  // the frame is matched whatever it says
 
     const auto start = std::chrono::steady_clock::now();
     out.header = frame.header;
@@ -139,50 +126,7 @@ int serve(ServiceConfig& config) {
     node.publish("DISPARITY", out);
     node.countOut(frame.header.utime, out.processing_ms);
 
-    // The first 10 checks on every frame, so the first verdict comes a second after start
-    // (at 10 Hz), before a drive records bad disparity; then every row_check_every frames.
-    // Not while one view repeats (frozen_view.hpp): the two images are from different
-    // moments, and their rows would differ by the vehicle's motion, not the rig's.
-    if (row_check_every > 0 && frozen.framesStopped() == 0 &&
-        (row_checks_done < 10 || node.framesIn() % row_check_every == 0)) {
-      ++row_checks_done;
-      const stereo::RowOffset m = stereo::measureRowOffset(matched_left, matched_right, disparity);
-      node.count(m.valid ? "row_checks" : "row_checks_unmeasured");
-      // Too few matched points to measure the rows: does one view show nothing
-      // (blank_view.hpp), else are the views the right way round (view_order_check.hpp)?
-      // Only then, as a rig that matches needs neither.
-      const stereo::ViewTexture texture =
-          m.valid ? stereo::ViewTexture{} : stereo::compareViewTexture(matched_left, matched_right);
-      blank_in_a_row = texture.blank.empty() ? 0 : blank_in_a_row + 1;
-      if (blank_in_a_row >= 2)
-        node.error("view_blank", cv::format("the %s view shows almost no texture (%d textured points against the "
-                                            "other's %d): a lens cap, a covered, fogged or iced lens, or a dead "
-                                            "sensor",
-                                            texture.blank.c_str(), texture.blank == "left" ? texture.left : texture.right,
-                                            texture.blank == "left" ? texture.right : texture.left));
-      const stereo::ViewOrder order = m.valid || !texture.blank.empty()
-                                          ? stereo::ViewOrder{}
-                                          : stereo::measureViewOrder(matched_left, matched_right);
-      swapped_in_a_row = order.swapped ? swapped_in_a_row + 1 : 0;
-      if (swapped_in_a_row >= 2)  // two checks in a row: not one odd frame
-        node.error("views_swapped",
-                   cv::format("the left and right views look swapped: %.0f %% of %d tracked points lie farther right "
-                              "in the right view than in the left (the right way round they lie farther left); check "
-                              "which camera feeds which side (cables, driver, topics)",
-                              100.0 * order.share_rightward, order.votes));
-      if (row_offsets.add(m)) {
-        if (row_offsets.misaligned()) {
-          node.error("row_misaligned", "rectification: " + row_offsets.describe() +
-                                           ": the rig no longer matches its calibration (max_row_offset_px " +
-                                           cv::format("%.2f", max_row_offset) +
-                                           "); disparity and detections degrade, recalibrate it");
-          row_worst_said = -1.0f;  // back within the limit: said again
-        } else if (row_worst_said < 0 || std::abs(row_offsets.median().worst_px - row_worst_said) >= 0.1f) {
-          std::fprintf(stderr, "stereo_matcher: rectification check: %s: aligned\n", row_offsets.describe().c_str());
-          row_worst_said = row_offsets.median().worst_px;
-        }
-      }
-    }
+    report(rig.afterMatching(matched_left, matched_right, disparity), "");
   }, queue);
   return node.spin();
 }

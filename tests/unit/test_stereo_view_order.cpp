@@ -7,29 +7,14 @@
 
 #include <filesystem>
 
+#include "stereo_scene_texture.hpp"
 #include "textured_points.hpp"
 #include "view_order_check.hpp"
 
 namespace nerv::stereo {
 namespace {
 
-// Texture at several scales, as a scene has (fine grain alone vanishes in the coarse
-// pyramid levels that a 60 px shift needs).
-cv::Mat texture(int width, int height, unsigned seed) {
-  cv::RNG rng(seed);
-  cv::Mat sum = cv::Mat::zeros(height, width, CV_32FC1);
-  for (const double sigma : {1.5, 4.0, 10.0}) {
-    cv::Mat noise(height, width, CV_32FC1), smooth;
-    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 1.0);
-    cv::GaussianBlur(noise, smooth, cv::Size(0, 0), sigma);
-    cv::normalize(smooth, smooth, 0, 1, cv::NORM_MINMAX);
-    sum += smooth;
-  }
-  cv::Mat out;
-  cv::normalize(sum, sum, 0, 255, cv::NORM_MINMAX);
-  sum.convertTo(out, CV_8UC1);
-  return out;
-}
+cv::Mat texture(int width, int height, unsigned seed) { return multiScaleTexture(width, height, seed); }
 
 // The right view of a wall at disparity d: the left view's (x, y) at (x - d, y).
 cv::Mat rightView(const cv::Mat& left, double d) {

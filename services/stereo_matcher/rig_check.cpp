@@ -1,0 +1,75 @@
+#include "rig_check.hpp"
+
+#include <cmath>
+
+#include "blank_view.hpp"
+#include "view_order_check.hpp"
+
+namespace nerv::stereo {
+
+RigCheck::RigCheck(const RigCheckParams& params)
+    : p_(params), frozen_(params.frozen_after), rows_(10, params.max_row_offset_px) {}
+
+std::vector<RigFinding> RigCheck::beforeMatching(const cv::Mat& left, const cv::Mat& right) {
+  std::vector<RigFinding> out;
+  const std::string stopped = frozen_.push(left, right);
+  if (stopped.empty()) return out;
+  // Every frame of it counted, the error said when it starts and every 100 frames after.
+  out.push_back({RigFinding::Kind::Count, "frozen_view_frames", ""});
+  const int n = frozen_.framesStopped();
+  if (n == p_.frozen_after || n % 100 == 0)
+    out.push_back({RigFinding::Kind::Error, "view_frozen",
+                   "the " + stopped + " camera's image has not changed for " + std::to_string(n) +
+                       " frames while the other's has: a stopped camera or driver; the disparity compares images "
+                       "taken at different times"});
+  return out;
+}
+
+std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity) {
+  std::vector<RigFinding> out;
+  ++frames_;
+  // Not while one view repeats: the two images are from different moments, and their rows
+  // would differ by the vehicle's motion, not the rig's.
+  if (p_.check_every <= 0 || frozen_.framesStopped() > 0 ||
+      (checks_ >= p_.first_checks && frames_ % p_.check_every != 0))
+    return out;
+  ++checks_;
+  const RowOffset m = measureRowOffset(left, right, disparity);
+  out.push_back({RigFinding::Kind::Count, m.valid ? "row_checks" : "row_checks_unmeasured", ""});
+  // Too few matched points to measure the rows: does one view show nothing, else are the
+  // views the right way round? Only then, as a rig that matches needs neither.
+  const ViewTexture texture = m.valid ? ViewTexture{} : compareViewTexture(left, right);
+  blank_in_a_row_ = texture.blank.empty() ? 0 : blank_in_a_row_ + 1;
+  if (blank_in_a_row_ >= p_.faults_in_a_row) {
+    const bool l = texture.blank == "left";
+    out.push_back({RigFinding::Kind::Error, "view_blank",
+                   cv::format("the %s view shows almost no texture (%d textured points against the other's %d): a "
+                              "lens cap, a covered, fogged or iced lens, or a dead sensor",
+                              texture.blank.c_str(), l ? texture.left : texture.right, l ? texture.right : texture.left)});
+  }
+  const ViewOrder order = m.valid || !texture.blank.empty() ? ViewOrder{} : measureViewOrder(left, right);
+  swapped_in_a_row_ = order.swapped ? swapped_in_a_row_ + 1 : 0;
+  if (swapped_in_a_row_ >= p_.faults_in_a_row)
+    out.push_back({RigFinding::Kind::Error, "views_swapped",
+                   cv::format("the left and right views look swapped: %.0f %% of %d tracked points lie farther right "
+                              "in the right view than in the left (the right way round they lie farther left); check "
+                              "which camera feeds which side (cables, driver, topics)",
+                              100.0 * order.share_rightward, order.votes)});
+  if (!rows_.add(m)) return out;
+  if (rows_.misaligned()) {
+    out.push_back({RigFinding::Kind::Error, "row_misaligned",
+                   "rectification: " + rows_.describe() + ": the rig no longer matches its calibration " +
+                       cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) +
+                       "; disparity and detections degrade, recalibrate it"});
+    worst_said_ = -1.0f;  // back within the limit: said again
+    return out;
+  }
+  const float worst = rows_.median().worst_px;
+  if (worst_said_ < 0 || std::abs(worst - worst_said_) >= 0.1f) {
+    out.push_back({RigFinding::Kind::Log, "", "rectification check: " + rows_.describe() + ": aligned"});
+    worst_said_ = worst;
+  }
+  return out;
+}
+
+}  // namespace nerv::stereo

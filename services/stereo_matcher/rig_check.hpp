@@ -1,0 +1,52 @@
+// When to run the stereo_matcher's checks of its rig, and what they say: one camera stopped
+// (frozen_view.hpp) on every frame; the rows (rectification_check.hpp) on the first 10 frames
+// and then every check_every frames, and when they cannot be measured, a blank view
+// (blank_view.hpp) or swapped views (view_order_check.hpp). The service reports what comes
+// back: counters, errors and log lines; this keeps no transport and is tested on its own.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <string>
+#include <vector>
+
+#include "frozen_view.hpp"
+#include "rectification_check.hpp"
+
+namespace nerv::stereo {
+
+struct RigCheckParams {
+  int check_every = 10;         // frames between row checks after the first ones; 0 = no row checks
+  int first_checks = 10;        // checks on each of the first frames, so the first verdict comes early
+  float max_row_offset_px = 0.4f;
+  int frozen_after = 3;         // pairs in a row with one view repeated before it is said
+  int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
+};
+
+struct RigFinding {
+  enum class Kind { Count, Error, Log };
+  Kind kind;
+  std::string name;     // the counter (Count, Error)
+  std::string message;  // one line (Error, Log)
+};
+
+class RigCheck {
+ public:
+  explicit RigCheck(const RigCheckParams& params = {});
+  // Every accepted pair, as decoded, before it is matched.
+  std::vector<RigFinding> beforeMatching(const cv::Mat& left, const cv::Mat& right);
+  // Every matched pair: the gray views the matcher saw and its disparity (CV_32F).
+  std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity);
+
+ private:
+  RigCheckParams p_;
+  FrozenViewCheck frozen_;
+  RowOffsetMonitor rows_;
+  long long frames_ = 0, checks_ = 0;
+  // An aligned verdict is logged the first time, after an error, and whenever the rows moved
+  // by 0.1 px or more since the last such line, so a drift shows before it is an error.
+  float worst_said_ = -1.0f;
+  int blank_in_a_row_ = 0, swapped_in_a_row_ = 0;
+};
+
+}  // namespace nerv::stereo

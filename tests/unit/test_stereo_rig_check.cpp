@@ -1,0 +1,101 @@
+// When the stereo_matcher checks its rig and what it says (services/stereo_matcher/rig_check.hpp).
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "rig_check.hpp"
+#include "stereo_scene_texture.hpp"
+
+namespace nerv::stereo {
+namespace {
+
+cv::Mat texture(unsigned seed) { return multiScaleTexture(640, 240, seed); }
+
+// The right view of a wall at disparity 20, its rows moved by dy.
+cv::Mat rightView(const cv::Mat& left, double dy) {
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -20, 0, 1, dy);
+  cv::Mat right;
+  cv::warpAffine(left, right, shift, left.size(), cv::INTER_CUBIC, cv::BORDER_REFLECT);
+  return right;
+}
+
+const cv::Mat kWall(240, 640, CV_32FC1, cv::Scalar(20.0f));
+
+std::string names(const std::vector<RigFinding>& findings) {
+  std::string out;
+  for (const RigFinding& f : findings) out += (out.empty() ? "" : " ") + (f.name.empty() ? "log" : f.name);
+  return out;
+}
+
+TEST(stereoRigCheck, FirstTenFramesThenEveryTenthAndAVerdictEveryTenChecks) {
+  RigCheck rig;  // check_every 10, first_checks 10
+  const cv::Mat left = texture(1), right = rightView(left, 0);
+  for (int frame = 1; frame <= 9; ++frame) EXPECT_EQ(names(rig.afterMatching(left, right, kWall)), "row_checks") << frame;
+  const std::vector<RigFinding> tenth = rig.afterMatching(left, right, kWall);
+  ASSERT_EQ(names(tenth), "row_checks log");
+  EXPECT_EQ(tenth[1].kind, RigFinding::Kind::Log);
+  EXPECT_NE(tenth[1].message.find("rectification check: the right view's rows lie"), std::string::npos);
+  EXPECT_NE(tenth[1].message.find(": aligned"), std::string::npos);
+  for (int frame = 11; frame <= 19; ++frame) EXPECT_EQ(names(rig.afterMatching(left, right, kWall)), "") << frame;
+  EXPECT_EQ(names(rig.afterMatching(left, right, kWall)), "row_checks");  // frame 20
+  // The 20th check's verdict: still aligned, unchanged, so no second line.
+  for (int frame = 21; frame <= 100; ++frame) {
+    const std::string said = names(rig.afterMatching(left, right, kWall));
+    EXPECT_EQ(said, frame % 10 == 0 ? "row_checks" : "") << frame;
+  }
+  // check_every 0: no row checks at all.
+  RigCheck off({0});
+  for (int frame = 1; frame <= 12; ++frame) EXPECT_TRUE(off.afterMatching(left, right, kWall).empty());
+}
+
+TEST(stereoRigCheck, RowsOffAreAnErrorAtTheVerdict) {
+  RigCheck rig;
+  const cv::Mat left = texture(2), right = rightView(left, 1.0);
+  for (int frame = 1; frame <= 9; ++frame) rig.afterMatching(left, right, kWall);
+  const std::vector<RigFinding> tenth = rig.afterMatching(left, right, kWall);
+  ASSERT_EQ(names(tenth), "row_checks row_misaligned");
+  EXPECT_EQ(tenth[1].kind, RigFinding::Kind::Error);
+  EXPECT_NE(tenth[1].message.find("rectification: the right view's rows lie 1.0"), std::string::npos) << tenth[1].message;
+  EXPECT_NE(tenth[1].message.find("(max_row_offset_px 0.40); disparity and detections degrade, recalibrate it"),
+            std::string::npos)
+      << tenth[1].message;
+}
+
+TEST(stereoRigCheck, AStoppedCameraIsSaidAndPausesTheRowChecks) {
+  RigCheck rig;
+  const cv::Mat stuck = texture(3);
+  EXPECT_EQ(names(rig.beforeMatching(texture(10), stuck)), "");
+  // Repeated once and twice: not yet said, but no row check while it repeats.
+  EXPECT_EQ(names(rig.beforeMatching(texture(11), stuck)), "");
+  EXPECT_TRUE(rig.afterMatching(texture(11), stuck, kWall).empty());
+  EXPECT_EQ(names(rig.beforeMatching(texture(12), stuck)), "");
+  const std::vector<RigFinding> third = rig.beforeMatching(texture(13), stuck);
+  ASSERT_EQ(names(third), "frozen_view_frames view_frozen");
+  EXPECT_EQ(third[1].message,
+            "the right camera's image has not changed for 3 frames while the other's has: a stopped camera or "
+            "driver; the disparity compares images taken at different times");
+  EXPECT_EQ(names(rig.beforeMatching(texture(14), stuck)), "frozen_view_frames");  // counted; said again at the 100th
+  EXPECT_TRUE(rig.afterMatching(texture(14), stuck, kWall).empty());
+}
+
+TEST(stereoRigCheck, BlankAndSwappedViewsAreSaidOnTheSecondUnmeasuredCheck) {
+  const cv::Mat none = cv::Mat::zeros(240, 640, CV_32FC1);  // the matcher found nothing
+  const cv::Mat left = texture(4);
+  cv::Mat fogged;
+  cv::GaussianBlur(rightView(left, 0), fogged, cv::Size(0, 0), 8);
+  RigCheck blank;
+  EXPECT_EQ(names(blank.afterMatching(left, fogged, none)), "row_checks_unmeasured");
+  const std::vector<RigFinding> second = blank.afterMatching(left, fogged, none);
+  ASSERT_EQ(names(second), "row_checks_unmeasured view_blank");
+  EXPECT_NE(second[1].message.find("the right view shows almost no texture (0 textured points"), std::string::npos)
+      << second[1].message;
+  RigCheck swapped;
+  const cv::Mat right = rightView(left, 0);
+  EXPECT_EQ(names(swapped.afterMatching(right, left, none)), "row_checks_unmeasured");
+  const std::vector<RigFinding> again = swapped.afterMatching(right, left, none);
+  ASSERT_EQ(names(again), "row_checks_unmeasured views_swapped");
+  EXPECT_NE(again[1].message.find("the left and right views look swapped"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace nerv::stereo
