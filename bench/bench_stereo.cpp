@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "disparity_metrics.hpp"
-#include "rectification_check.hpp"
+#include "rig_check.hpp"
 #include "stereo_matcher.hpp"
 
 using namespace nerv::stereo;
@@ -117,10 +117,11 @@ int main(int argc, char** argv) {
     offset = measureRowOffset(left, right, disparities[checked]);
     check_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::printf("rectification check on %s's disparity: %.2f ms (every 10th frame by default: %.2f ms a frame); "
+  const int every = RigCheckParams{}.check_every;
+  std::printf("rectification check on %s's disparity: %.2f ms (every %dth frame by default: %.2f ms a frame); "
               "rows %+.2f px at the centre, up to %.2f px off, turned %.3f deg, from %d points%s\n",
-              entries[checked].label.c_str(), median(check_ms), median(check_ms) / 10, offset.offset_px,
-              offset.worst_px, std::atan(offset.slope_x) * 180 / 3.14159265358979, offset.points,
+              entries[checked].label.c_str(), median(check_ms), every, median(check_ms) / every, offset.offset_px,
+              offset.worst_px, std::atan(offset.slope_x) * 180 / CV_PI, offset.points,
               offset.valid ? "" : " (no measurement)");
   return 0;
 }

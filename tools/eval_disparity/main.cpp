@@ -27,7 +27,7 @@
 
 #include "config.hpp"
 #include "pipeline_keys.hpp"
-#include "rectification_check.hpp"
+#include "rig_check.hpp"
 #include "disparity_metrics.hpp"
 #include "message_convert.hpp"
 #include "stereo_matcher.hpp"
@@ -148,7 +148,9 @@ int main(int argc, char** argv) {
       section.finish();
     }
     if (algorithms.empty()) algorithms.push_back(base.algorithm);
-    RowOffsetMonitor rows(static_cast<int>(frames.size()), 0.4f);  // on the first algorithm's disparity
+    // On the first algorithm's disparity, against the service's default limit.
+    const float max_row_offset = RigCheckParams{}.max_row_offset_px;
+    RowOffsetMonitor rows(static_cast<int>(frames.size()), max_row_offset);
     bool rows_checked = false;
     for (const std::string& name : algorithms) {
       Params p = base;
@@ -177,7 +179,8 @@ int main(int argc, char** argv) {
     }
     if (rows.samples() > 0)
       std::printf("rectification check (the stereo_matcher's, on %d frames): %s%s\n", rows.samples(),
-                  rows.describe().c_str(), rows.misaligned() ? ": MISALIGNED beyond 0.40 px" : ": aligned");
+                  rows.describe().c_str(),
+                  rows.misaligned() ? cv::format(": MISALIGNED beyond %.2f px", max_row_offset).c_str() : ": aligned");
     else
       std::printf("rectification check: no frame with enough textured points\n");
   } catch (const ConfigError& e) {

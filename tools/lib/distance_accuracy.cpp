@@ -1,5 +1,7 @@
 #include "distance_accuracy.hpp"
 
+#include "percentile.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,12 +29,6 @@ void DistanceAccuracy::add(float truth_m, float estimate_m, float sigma_m) {
   sigma_.push_back(sigma_m > 0 && std::isfinite(sigma_m) ? sigma_m : 0.0f);
 }
 
-namespace {
-double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-}  // namespace
 
 std::vector<DistanceErrorBand> DistanceAccuracy::bands(const std::vector<float>& edges) const {
   std::vector<DistanceErrorBand> out;
@@ -53,9 +49,9 @@ std::vector<DistanceErrorBand> DistanceAccuracy::bands(const std::vector<float>&
     if (abs_err.empty()) continue;
     band.count = static_cast<int>(abs_err.size());
     band.bias_m = sum / band.count;
-    band.median_abs_m = quantile(abs_err, 0.5);
-    band.p95_abs_m = quantile(abs_err, 0.95);
-    band.median_rel = quantile(rel_err, 0.5);
+    band.median_abs_m = percentile(abs_err, 0.5);
+    band.p95_abs_m = percentile(abs_err, 0.95);
+    band.median_rel = percentile(rel_err, 0.5);
     if (!over_sigma.empty()) {
       band.count_with_sigma = static_cast<int>(over_sigma.size());
       const auto share = [&](double k) {
@@ -65,7 +61,7 @@ std::vector<DistanceErrorBand> DistanceAccuracy::bands(const std::vector<float>&
       };
       band.within_1sigma = share(1.0);
       band.within_2sigma = share(2.0);
-      band.p68_abs_over_sigma = quantile(over_sigma, 0.68);
+      band.p68_abs_over_sigma = percentile(over_sigma, 0.68);
     }
     out.push_back(band);
   }
