@@ -53,7 +53,7 @@ int serve(ServiceConfig& config) {
     for (const stereo::RigFinding& f : findings) {
       if (f.kind == stereo::RigFinding::Kind::Count) node.count(f.name);
       else if (f.kind == stereo::RigFinding::Kind::Error) node.error(f.name, prefix + f.message);
-      else std::fprintf(stderr, "stereo_matcher: %s\n", f.message.c_str());
+      else std::fprintf(stderr, "stereo_matcher: %s%s\n", prefix.c_str(), f.message.c_str());
     }
   };
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
@@ -126,7 +126,7 @@ int serve(ServiceConfig& config) {
     node.publish("DISPARITY", out);
     node.countOut(frame.header.utime, out.processing_ms);
 
-    report(rig.afterMatching(matched_left, matched_right, disparity), "");
+    report(rig.afterMatching(matched_left, matched_right, disparity), what);
   }, queue);
   return node.spin();
 }

@@ -62,6 +62,8 @@ class RowOffsetMonitor {
   // Adds a measurement (invalid ones are ignored) and returns true when a verdict is due:
   // every `window` valid measurements.
   bool add(const RowOffset& m);
+  // Forgets the remembered measurements: the next verdict is of the `window` that follow.
+  void restart() { checks_.clear(), since_verdict_ = 0; }
   int samples() const { return static_cast<int>(checks_.size()); }
   RowOffset median() const;  // each field the median of the remembered measurements
   bool misaligned() const { return samples() > 0 && median().worst_px > max_; }

@@ -7,8 +7,12 @@
 
 namespace nerv::stereo {
 
+namespace {
+constexpr int kVerdictChecks = 10;  // checks a verdict is the median of
+}
+
 RigCheck::RigCheck(const RigCheckParams& params)
-    : p_(params), frozen_(params.frozen_after), rows_(10, params.max_row_offset_px) {}
+    : p_(params), frozen_(params.frozen_after), rows_(kVerdictChecks, params.max_row_offset_px) {}
 
 std::vector<RigFinding> RigCheck::beforeMatching(const cv::Mat& left, const cv::Mat& right) {
   std::vector<RigFinding> out;
@@ -30,9 +34,10 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   ++frames_;
   // Not while one view repeats: the two images are from different moments, and their rows
   // would differ by the vehicle's motion, not the rig's.
-  if (p_.check_every <= 0 || frozen_.framesStopped() > 0 ||
-      (checks_ >= p_.first_checks && frames_ % p_.check_every != 0))
-    return out;
+  const bool scheduled = checks_ < p_.first_checks || (p_.check_every > 0 && frames_ % p_.check_every == 0);
+  if (p_.check_every <= 0 || frozen_.framesStopped() > 0 || (!scheduled && recheck_left_ == 0)) return out;
+  const bool rechecking = recheck_left_ > 0;
+  if (rechecking) --recheck_left_;
   ++checks_;
   const RowOffset m = measureRowOffset(left, right, disparity);
   out.push_back({RigFinding::Kind::Count, m.valid ? "row_checks" : "row_checks_unmeasured", ""});
@@ -55,7 +60,21 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                               "in the right view than in the left (the right way round they lie farther left); check "
                               "which camera feeds which side (cables, driver, topics)",
                               100.0 * order.share_rightward, order.votes)});
+  // A reading on the other side of the limit from the last verdict: check every frame, and let
+  // the next verdict be of these checks alone rather than wait until they outnumber the old
+  // ones in a window that spans 100 frames.
+  if (m.valid && verdict_ != Verdict::None && !rechecking &&
+      (m.worst_px > p_.max_row_offset_px) != (verdict_ == Verdict::Misaligned)) {
+    out.push_back({RigFinding::Kind::Log, "",
+                   cv::format("rectification check: this frame's rows are up to %.2f px off against the last "
+                              "verdict's %.2f px (limit %.2f): checking every frame for the next %d checks",
+                              m.worst_px, verdict_worst_, p_.max_row_offset_px, kVerdictChecks)});
+    rows_.restart();
+    recheck_left_ = kVerdictChecks - 1;
+  }
   if (!rows_.add(m)) return out;
+  verdict_ = rows_.misaligned() ? Verdict::Misaligned : Verdict::Aligned;
+  verdict_worst_ = rows_.median().worst_px;
   if (rows_.misaligned()) {
     out.push_back({RigFinding::Kind::Error, "row_misaligned",
                    "rectification: " + rows_.describe() + ": the rig no longer matches its calibration " +

@@ -1,7 +1,11 @@
 // When to run the stereo_matcher's checks of its rig, and what they say: one camera stopped
 // (frozen_view.hpp) on every frame; the rows (rectification_check.hpp) on the first 10 frames
 // and then every check_every frames, and when they cannot be measured, a blank view
-// (blank_view.hpp) or swapped views (view_order_check.hpp). The service reports what comes
+// (blank_view.hpp) or swapped views (view_order_check.hpp). A check that reads the rows on
+// the other side of the limit from the last verdict (a rig knocked mid-drive, or mended)
+// makes the next checks run on every frame, and the verdict is of those alone: it comes
+// 10-19 frames after the knock instead of the 60-160 a window of every-tenth-frame checks
+// needed to turn. The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -46,6 +50,9 @@ class RigCheck {
   // An aligned verdict is logged the first time, after an error, and whenever the rows moved
   // by 0.1 px or more since the last such line, so a drift shows before it is an error.
   float worst_said_ = -1.0f;
+  enum class Verdict { None, Aligned, Misaligned } verdict_ = Verdict::None;
+  float verdict_worst_ = 0;  // the last verdict's median of the worst offsets [px]
+  int recheck_left_ = 0;     // frames still checked, each, after a reading against the verdict
   int blank_in_a_row_ = 0, swapped_in_a_row_ = 0;
 };
 

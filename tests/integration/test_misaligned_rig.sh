@@ -11,6 +11,10 @@
 #    within 0.15 px and its direction, and every frame still comes out;
 #  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
 #    0.02 deg and rows off by more than the limit where the view matches;
+#  - knocked mid-drive (11 frames as recorded, then 22 moved by a row): the first verdict is
+#    "aligned", the next check reads the rows off and the checks run on every frame, so
+#    row_misaligned comes 9 frames after that check, not 90 (a window of every-tenth-frame
+#    checks outvoted);
 #  - swapped (crossed cables): the error views_swapped, not a row misalignment;
 #  - the right camera stopped (its image repeated): the error view_frozen;
 #  - the right lens fogged (its view blurred to nothing): the error view_blank;
@@ -41,7 +45,7 @@ check_run() {  # check_run NAME: the misalignment error was said, counted, and n
   line=$(grep "row_misaligned" "$tmp/$1/logs/services.log" | head -n 1)
   [[ -n "$line" ]] || fail "$1: no row_misaligned error: $(grep rectification "$tmp/$1/logs/services.log")"
   (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
-  tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:rectification' \
+  tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:frame[0-9]*:rectification' \
     || fail "$1: NERV_HEALTH's last_error is not the misalignment"
   out=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
   in=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
@@ -69,6 +73,32 @@ worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
 near "$turn" 0.15 0.02 || fail "turned by 0.15 deg, read $turn deg: '$line'"
 awk -v w="$worst" 'BEGIN { exit !(w > 0.4) }' || fail "turned by 0.15 deg, rows up to only $worst px off: '$line'"
 pass "right views turned by 0.15 deg: ${line#*row_misaligned: }; $out of $in frames out"
+# Knocked mid-drive: frames 0-10 as recorded, 11-32 with the right views one row down (from the
+# +1 set above, the sequence played on), 33 frames at 10 Hz once.
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_asis" >/dev/null || fail "nerv_misalign (as recorded)"
+mkdir -p "$tmp/data_knocked/left" "$tmp/data_knocked/right"
+cp "$tmp/data_1/calib.yaml" "$tmp/data_knocked/"
+mapfile -t names < <(ls "$tmp/data_1/left")
+for i in $(seq 0 32); do
+  n=${names[$((i % ${#names[@]}))]} from="$tmp/data_1/right"
+  (( i < ${#names[@]} )) && from="$tmp/data_asis/right"
+  cp "$tmp/data_1/left/$n" "$tmp/data_knocked/left/$(printf %06d "$i").png"
+  cp "$from/$n" "$tmp/data_knocked/right/$(printf %06d "$i").png"
+done
+"$NERV_ROOT/tools/nerv" run --data "$tmp/data_knocked" --rate 10 --out "$tmp/knocked" >"$tmp/knocked.txt" 2>&1 \
+  || fail "knocked: nerv run exited with $?: $(tail -n 3 "$tmp/knocked.txt")"
+log="$tmp/knocked/logs/services.log"
+first=$(grep "rectification check" "$log" | head -n 1)
+[[ "$first" == *": aligned" ]] || fail "knocked: the first verdict is not 'aligned': '$first'"
+suspect=$(grep "checking every frame" "$log" | head -n 1)
+line=$(grep "row_misaligned" "$log" | head -n 1)
+[[ -n "$suspect" && -n "$line" ]] || fail "knocked mid-drive: no re-check or no error: $(grep rectification "$log")"
+seq_of() { sed -E 's/.*frame ([0-9]+): .*/\1/' <<<"$1"; }
+d=$(( $(seq_of "$line") - $(seq_of "$suspect") ))
+(( d >= 9 && d <= 14 )) || fail "knocked: re-check at '$suspect', error at '$line'"
+near "$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")" 1 0.15 || fail "knocked: '$line'"
+pass "knocked mid-drive: re-checked at frame $(seq_of "$suspect"), row_misaligned at frame $(seq_of "$line")"
+
 # A fault that leaves the rows unmeasurable or repeats a view, named by its own error:
 # named_fault NAME "nerv_misalign options" ERROR "text the error must hold" ERROR_IT_IS_NOT
 named_fault() {
@@ -100,4 +130,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "8 passed, 0 failed"
+echo "9 passed, 0 failed"

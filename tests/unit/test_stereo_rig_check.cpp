@@ -97,5 +97,51 @@ TEST(stereoRigCheck, BlankAndSwappedViewsAreSaidOnTheSecondUnmeasuredCheck) {
   EXPECT_NE(again[1].message.find("the left and right views look swapped"), std::string::npos);
 }
 
+// A rig knocked mid-drive: the first check after it reads the rows off, the checks then run
+// on every frame, and the error comes at the tenth of them, not when the old window is outvoted.
+TEST(stereoRigCheck, AKnockMidDriveIsSaidWithinTwentyFrames) {
+  RigCheck rig;
+  const cv::Mat left = texture(5), aligned = rightView(left, 0), knocked = rightView(left, 1.0);
+  for (int frame = 1; frame <= 103; ++frame) rig.afterMatching(left, aligned, kWall);
+  // Knocked at frame 104: frames 104-109 are not checked; 110 is, and reads it.
+  for (int frame = 104; frame <= 109; ++frame) EXPECT_EQ(names(rig.afterMatching(left, knocked, kWall)), "") << frame;
+  const std::vector<RigFinding> first = rig.afterMatching(left, knocked, kWall);
+  ASSERT_EQ(names(first), "row_checks log");
+  EXPECT_NE(first[1].message.find("this frame's rows are up to 1.0"), std::string::npos) << first[1].message;
+  EXPECT_NE(first[1].message.find("checking every frame for the next 10 checks"), std::string::npos);
+  for (int frame = 111; frame <= 118; ++frame)
+    EXPECT_EQ(names(rig.afterMatching(left, knocked, kWall)), "row_checks") << frame;
+  const std::vector<RigFinding> verdict = rig.afterMatching(left, knocked, kWall);  // frame 119
+  ASSERT_EQ(names(verdict), "row_checks row_misaligned") << verdict.back().message;
+  EXPECT_NE(verdict[1].message.find("median of the last 10 checks"), std::string::npos);
+  // Back to every tenth frame, and the error again at each verdict while it lasts.
+  for (int frame = 120; frame <= 129; ++frame)
+    EXPECT_EQ(names(rig.afterMatching(left, knocked, kWall)), frame % 10 == 0 ? "row_checks" : "") << frame;
+
+  // Mended: the same the other way, an "aligned" line ten checks after the first good one.
+  for (int frame = 130; frame <= 139; ++frame) rig.afterMatching(left, knocked, kWall);  // the next verdict at 210
+  ASSERT_EQ(names(rig.afterMatching(left, aligned, kWall)), "row_checks log");  // frame 140
+  for (int frame = 141; frame <= 148; ++frame)
+    EXPECT_EQ(names(rig.afterMatching(left, aligned, kWall)), "row_checks") << frame;
+  const std::vector<RigFinding> mended = rig.afterMatching(left, aligned, kWall);  // frame 149
+  ASSERT_EQ(names(mended), "row_checks log");
+  EXPECT_NE(mended[1].message.find(": aligned"), std::string::npos) << mended[1].message;
+}
+
+// One odd reading (glare, a bump) makes ten checks in a row, whose verdict stands as it was.
+TEST(stereoRigCheck, OneOddReadingChangesNothing) {
+  RigCheck rig;
+  const cv::Mat left = texture(6), aligned = rightView(left, 0), odd = rightView(left, 1.5);
+  for (int frame = 1; frame <= 19; ++frame) rig.afterMatching(left, aligned, kWall);
+  EXPECT_EQ(names(rig.afterMatching(left, odd, kWall)), "row_checks log");  // frame 20
+  for (int frame = 21; frame <= 29; ++frame) {
+    const std::string said = names(rig.afterMatching(left, aligned, kWall));
+    EXPECT_TRUE(said == "row_checks" || said == "row_checks log") << frame << ": " << said;
+    EXPECT_EQ(said.find("row_misaligned"), std::string::npos) << frame;
+  }
+  for (int frame = 30; frame <= 60; ++frame)
+    EXPECT_EQ(names(rig.afterMatching(left, aligned, kWall)), frame % 10 == 0 ? "row_checks" : "") << frame;
+}
+
 }  // namespace
 }  // namespace nerv::stereo

@@ -7,7 +7,7 @@
 // "Does one view show nothing?").
 //
 //   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right]
-//                 [--frames N]
+//                 [--frames N] [--from-frame K]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
@@ -15,7 +15,9 @@
 // from outside repeat the border; --swap then writes each view as the other, as a rig with its
 // cables or topics crossed delivers them; --freeze-right K repeats the right view of the K-th
 // frame (from 0) in every later frame, as a stopped camera or driver delivers it; --blank-right
-// replaces the right views by a fogged lens's: blurred to nothing, sigma 8 px), OUT/calib.yaml
+// replaces the right views by a fogged lens's: blurred to nothing, sigma 8 px; --from-frame K
+// leaves the frames before the K-th (from 0) as they were, as a rig knocked mid-drive delivers
+// them), OUT/calib.yaml
 // (the first frame's rectified camera), OUT/label_2, OUT/disp_gt (the left view's true
 // disparity, unchanged: it is the left view's) and OUT/extrinsics.txt when DIR has them.
 // Exit 2 on bad arguments or data.
@@ -37,7 +39,7 @@ namespace fs = std::filesystem;
 namespace {
 
 int usage(const char* why) {
-  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--frames N]\n", why);
+  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right] [--frames N] [--from-frame K]\n", why);
   return 2;
 }
 
@@ -55,7 +57,7 @@ void writeCalibration(const std::string& path, const StereoCamera& c) {
 int main(int argc, char** argv) {
   std::string data, out;
   double rows = 0, roll_deg = 0;
-  int max_frames = -1, freeze_right = -1;
+  int max_frames = -1, freeze_right = -1, from_frame = 0;
   bool swap = false, blank_right = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -71,6 +73,7 @@ int main(int argc, char** argv) {
     else if (a == "--rows") rows = std::strtod(v.c_str(), &end);
     else if (a == "--roll-deg") roll_deg = std::strtod(v.c_str(), &end);
     else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+    else if (a == "--from-frame") from_frame = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else if (a == "--freeze-right") freeze_right = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else return usage(("unknown argument " + a).c_str());
     if (end && *end) return usage(("not a number: " + a + " " + v).c_str());
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
   if (data.empty() || out.empty()) return usage("--data and --out are required");
   if (!std::isfinite(rows) || std::fabs(rows) > 100) return usage("--rows must be a number of rows within +-100");
   if (!std::isfinite(roll_deg) || std::fabs(roll_deg) > 10) return usage("--roll-deg must be within +-10");
+  if (from_frame < 0) return usage("--from-frame must be a frame number from 0");
   try {
     const Dataset ds = openDataset(data);
     if (ds.frames.front().raw) throw DatasetError(data + " holds raw views: misalign a rectified sequence");
@@ -96,17 +100,19 @@ int main(int argc, char** argv) {
       const cv::Mat left = cv::imread(f.left_path, cv::IMREAD_UNCHANGED);
       const cv::Mat right = cv::imread(rf.right_path, cv::IMREAD_UNCHANGED);
       if (left.empty() || right.empty()) throw DatasetError("cannot read " + f.left_path + " or " + f.right_path);
+      const bool faulty = n >= from_frame;
       // Content at (x, y) moves to the point turned by roll_deg about (cx, cy), then rows lower:
       // x' = cx + c (x - cx) - s (y - cy), y' = cy + s (x - cx) + c (y - cy) + rows.
-      const double th = roll_deg * CV_PI / 180, c = std::cos(th), sn = std::sin(th);
+      const double th = faulty ? roll_deg * CV_PI / 180 : 0.0, c = std::cos(th), sn = std::sin(th);
       const double cx = f.camera.cx, cy = f.camera.cy;
       const cv::Mat shift = (cv::Mat_<double>(2, 3) << c, -sn, cx - c * cx + sn * cy,  //
-                             sn, c, cy - sn * cx - c * cy + rows);
+                             sn, c, cy - sn * cx - c * cy + (faulty ? rows : 0.0));
       cv::Mat moved;
       cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-      if (blank_right) cv::GaussianBlur(moved, moved, cv::Size(0, 0), 8);
-      if (!cv::imwrite(out + "/left/" + f.name + ".png", swap ? moved : left) ||
-          !cv::imwrite(out + "/right/" + f.name + ".png", swap ? left : moved))
+      if (blank_right && faulty) cv::GaussianBlur(moved, moved, cv::Size(0, 0), 8);
+      const bool swapped = swap && faulty;
+      if (!cv::imwrite(out + "/left/" + f.name + ".png", swapped ? moved : left) ||
+          !cv::imwrite(out + "/right/" + f.name + ".png", swapped ? left : moved))
         throw DatasetError("cannot write the images of " + f.name + " under " + out);
       if (labels && fs::exists(f.label_path))
         fs::copy_file(f.label_path, out + "/label_2/" + f.name + ".txt", fs::copy_options::overwrite_existing);
@@ -117,7 +123,8 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views turned by %+.3f deg and moved by %+.2f rows%s%s%s: %s\n", n, roll_deg, rows,
+    std::printf("%d frames, right views%s turned by %+.3f deg and moved by %+.2f rows%s%s%s: %s\n", n,
+                from_frame > 0 ? cv::format(" from frame %d on", from_frame).c_str() : "", roll_deg, rows,
                 freeze_right >= 0 ? cv::format(", frozen from frame %d on", freeze_right).c_str() : "",
                 blank_right ? ", blurred to nothing" : "",
                 swap ? ", then left and right swapped" : "", out.c_str());
