@@ -33,20 +33,10 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
     return out;
   // The most textured grid points with a disparity whose match lies inside the right view.
   const int r = std::max(1, p.window_px / 2);
-  const int margin = r + 2;
-  const std::vector<cv::Point2f> points =
-      texturedPoints(left, {p.grid_px, p.window_px, p.max_points}, [&](int x, int y) {
-        const float d = disparity.at<float>(y, x);
-        return d > 0 && x - d >= margin;
-      });
-  std::vector<cv::Point2f> from, to;
-  std::vector<float> disp;
-  for (const cv::Point2f& c : points) {
-    const float d = disparity.at<float>(cvRound(c.y), cvRound(c.x));
-    from.push_back(c);
-    to.push_back({c.x - d, c.y});
-    disp.push_back(d);
-  }
+  MatchedPoints matched = matchedTexturedPoints(left, disparity, {p.grid_px, p.window_px, p.max_points});
+  const std::vector<cv::Point2f>& from = matched.left;
+  std::vector<cv::Point2f>& to = matched.right;
+  const std::vector<float>& disp = matched.disparity;
   if (static_cast<int>(from.size()) < p.min_points) {
     out.points = static_cast<int>(from.size());
     return out;
@@ -109,25 +99,18 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
   return out;
 }
 
-bool RowOffsetMonitor::add(const RowOffset& m) {
-  if (!m.valid) return false;
-  checks_.push_back(m);
-  while (static_cast<int>(checks_.size()) > window_) checks_.pop_front();
-  if (++since_verdict_ < window_) return false;
-  since_verdict_ = 0;
-  return true;
-}
+bool RowOffsetMonitor::add(const RowOffset& m) { return m.valid && checks_.add(m); }
 
 RowOffset RowOffsetMonitor::median() const {
   RowOffset m;
-  if (checks_.empty()) return m;
+  if (checks_.size() == 0) return m;
   std::vector<float> a, b, c, worst, spread;
-  for (const RowOffset& r : checks_) {
+  for (const RowOffset& r : checks_.items()) {
     a.push_back(r.offset_px), b.push_back(r.slope_x), c.push_back(r.slope_y);
     worst.push_back(r.worst_px), spread.push_back(r.spread_px);
   }
   m.valid = true;
-  m.points = static_cast<int>(checks_.back().points);
+  m.points = static_cast<int>(checks_.items().back().points);
   m.offset_px = medianOf(a);
   m.slope_x = medianOf(b);
   m.slope_y = medianOf(c);
@@ -139,9 +122,10 @@ RowOffset RowOffsetMonitor::median() const {
 std::string RowOffsetMonitor::describe() const {
   const RowOffset m = median();
   int lo = 0, hi = 0;
-  for (size_t i = 0; i < checks_.size(); ++i) {
-    lo = i ? std::min(lo, checks_[i].points) : checks_[i].points;
-    hi = i ? std::max(hi, checks_[i].points) : checks_[i].points;
+  const auto& checks = checks_.items();
+  for (size_t i = 0; i < checks.size(); ++i) {
+    lo = i ? std::min(lo, checks[i].points) : checks[i].points;
+    hi = i ? std::max(hi, checks[i].points) : checks[i].points;
   }
   char line[260];
   std::snprintf(line, sizeof line,

@@ -26,8 +26,9 @@
 
 #include <opencv2/core.hpp>
 
-#include <deque>
 #include <string>
+
+#include "verdict_window.hpp"
 
 namespace nerv::stereo {
 
@@ -58,13 +59,13 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
 // whether the worst exceeds the limit.
 class RowOffsetMonitor {
  public:
-  RowOffsetMonitor(int window, float max_offset_px) : window_(window < 1 ? 1 : window), max_(max_offset_px) {}
+  RowOffsetMonitor(int window, float max_offset_px) : checks_(window), max_(max_offset_px) {}
   // Adds a measurement (invalid ones are ignored) and returns true when a verdict is due:
   // every `window` valid measurements.
   bool add(const RowOffset& m);
   // Forgets the remembered measurements: the next verdict is of the `window` that follow.
-  void restart() { checks_.clear(), since_verdict_ = 0; }
-  int samples() const { return static_cast<int>(checks_.size()); }
+  void restart() { checks_.restart(); }
+  int samples() const { return checks_.size(); }
   RowOffset median() const;  // each field the median of the remembered measurements
   bool misaligned() const { return samples() > 0 && median().worst_px > max_; }
   // One line: "the right view's rows lie 0.82 px below the left's at its centre and up to
@@ -73,10 +74,8 @@ class RowOffsetMonitor {
   std::string describe() const;
 
  private:
-  int window_;
+  VerdictWindow<RowOffset> checks_;
   float max_;
-  int since_verdict_ = 0;
-  std::deque<RowOffset> checks_;
 };
 
 }  // namespace nerv::stereo

@@ -12,7 +12,10 @@ constexpr int kVerdictChecks = 10;  // checks a verdict is the median of
 }
 
 RigCheck::RigCheck(const RigCheckParams& params)
-    : p_(params), frozen_(params.frozen_after), rows_(kVerdictChecks, params.max_row_offset_px) {}
+    : p_(params),
+      frozen_(params.frozen_after),
+      rows_(kVerdictChecks, params.max_row_offset_px),
+      delays_(kVerdictChecks, params.max_view_delay_ms) {}
 
 std::vector<RigFinding> RigCheck::beforeMatching(const cv::Mat& left, const cv::Mat& right) {
   std::vector<RigFinding> out;
@@ -29,13 +32,20 @@ std::vector<RigFinding> RigCheck::beforeMatching(const cv::Mat& left, const cv::
   return out;
 }
 
-std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity) {
+std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
+                                                const PairTiming& timing) {
   std::vector<RigFinding> out;
   ++frames_;
+  if (p_.check_every <= 0) return out;
+  // This left view kept for the next frame's shutter check, the one before it for this one's.
+  const int previous = newest_;
+  newest_ = newest_ == 0 ? 1 : 0;
+  left.copyTo(lefts_[newest_]);
+  utimes_[newest_] = timing.utime_us;
   // Not while one view repeats: the two images are from different moments, and their rows
   // would differ by the vehicle's motion, not the rig's.
-  const bool scheduled = checks_ < p_.first_checks || (p_.check_every > 0 && frames_ % p_.check_every == 0);
-  if (p_.check_every <= 0 || frozen_.framesStopped() > 0 || (!scheduled && recheck_left_ == 0)) return out;
+  const bool scheduled = checks_ < p_.first_checks || frames_ % p_.check_every == 0;
+  if (frozen_.framesStopped() > 0 || (!scheduled && recheck_left_ == 0)) return out;
   const bool rechecking = recheck_left_ > 0;
   if (rechecking) --recheck_left_;
   ++checks_;
@@ -72,6 +82,7 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
     rows_.restart();
     recheck_left_ = kVerdictChecks - 1;
   }
+  checkShutters(previous, right, disparity, timing, out);
   if (!rows_.add(m)) return out;
   verdict_ = rows_.misaligned() ? Verdict::Misaligned : Verdict::Aligned;
   verdict_worst_ = rows_.median().worst_px;
@@ -79,7 +90,9 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
     out.push_back({RigFinding::Kind::Error, "row_misaligned",
                    "rectification: " + rows_.describe() + ": the rig no longer matches its calibration " +
                        cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) +
-                       "; disparity and detections degrade, recalibrate it"});
+                       (unsynchronised_ ? "; but the views are also taken apart (views_unsynchronised), which moves "
+                                          "rows while driving: fix the cameras' trigger before recalibrating"
+                                        : "; disparity and detections degrade, recalibrate it")});
     worst_said_ = -1.0f;  // back within the limit: said again
     return out;
   }
@@ -89,6 +102,36 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
     worst_said_ = worst;
   }
   return out;
+}
+
+void RigCheck::checkShutters(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
+                             std::vector<RigFinding>& out) {
+  if (previous < 0 || timing.fx <= 0) return;
+  // Only against the frame just before, at most a second earlier (else much has moved that
+  // is not the vehicle).
+  const double interval_ms = static_cast<double>(timing.utime_us - utimes_[previous]) / 1000.0;
+  if (!(interval_ms > 0 && interval_ms <= 1000)) return;
+  const ShutterSync s =
+      measureShutterSync(lefts_[previous], lefts_[newest_], right, disparity, timing.fx, timing.cx, timing.cy);
+  if (!s.valid) return;  // standing, creeping or too little texture: nothing to compare a delay with
+  out.push_back({RigFinding::Kind::Count, "sync_checks", ""});
+  if (!delays_.add(static_cast<float>(s.offset * interval_ms))) return;
+  unsynchronised_ = delays_.unsynchronised();
+  if (unsynchronised_) {
+    out.push_back({RigFinding::Kind::Error, "views_unsynchronised",
+                   "shutters: " + delays_.describe() +
+                       cv::format(" (max_view_delay_ms %.1f): the cameras are not triggered together; while driving "
+                                  "every disparity off the image centre is off in proportion to speed x delay; check "
+                                  "the trigger wiring or the cameras' sync settings",
+                                  p_.max_view_delay_ms)});
+    delay_said_ = 1e9f;  // back within the limit: said again
+    return;
+  }
+  const float delay = delays_.median();
+  if (std::abs(delay - delay_said_) >= 0.5f) {
+    out.push_back({RigFinding::Kind::Log, "", "shutter check: " + delays_.describe() + ": synchronised"});
+    delay_said_ = delay;
+  }
 }
 
 }  // namespace nerv::stereo

@@ -5,7 +5,8 @@
 // the other side of the limit from the last verdict (a rig knocked mid-drive, or mended)
 // makes the next checks run on every frame, and the verdict is of those alone: it comes
 // 10-19 frames after the knock instead of the 60-160 a window of every-tenth-frame checks
-// needed to turn. The service reports what comes
+// needed to turn. On the same frames, while driving, whether the two views were taken at
+// the same moment (shutter_sync.hpp), against the frame before. The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -16,6 +17,9 @@
 
 #include "frozen_view.hpp"
 #include "rectification_check.hpp"
+#include "shutter_sync.hpp"
+
+#include <cstdint>
 
 namespace nerv::stereo {
 
@@ -25,6 +29,14 @@ struct RigCheckParams {
   float max_row_offset_px = 0.4f;
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
+  float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error
+};
+
+// What the shutter check needs of a matched pair besides its views: when it was taken and the
+// rectified camera. fx = 0: no shutter check.
+struct PairTiming {
+  int64_t utime_us = 0;  // capture time [us]
+  double fx = 0, cx = 0, cy = 0;
 };
 
 struct RigFinding {
@@ -40,9 +52,13 @@ class RigCheck {
   // Every accepted pair, as decoded, before it is matched.
   std::vector<RigFinding> beforeMatching(const cv::Mat& left, const cv::Mat& right);
   // Every matched pair: the gray views the matcher saw and its disparity (CV_32F).
-  std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity);
+  std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
+                                        const PairTiming& timing = {});
 
  private:
+  void checkShutters(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
+                     std::vector<RigFinding>& out);
+
   RigCheckParams p_;
   FrozenViewCheck frozen_;
   RowOffsetMonitor rows_;
@@ -53,6 +69,14 @@ class RigCheck {
   enum class Verdict { None, Aligned, Misaligned } verdict_ = Verdict::None;
   float verdict_worst_ = 0;  // the last verdict's median of the worst offsets [px]
   int recheck_left_ = 0;     // frames still checked, each, after a reading against the verdict
+  // The shutter check compares with the previous matched left view: two buffers, alternated,
+  // so that keeping one costs a copy and no allocation.
+  cv::Mat lefts_[2];
+  int64_t utimes_[2] = {0, 0};
+  int newest_ = -1;
+  ViewDelayMonitor delays_;
+  bool unsynchronised_ = false;
+  float delay_said_ = 1e9f;  // the delay of the last "synchronised" line [ms]
   int blank_in_a_row_ = 0, swapped_in_a_row_ = 0;
 };
 

@@ -46,4 +46,20 @@ std::vector<cv::Point2f> texturedPoints(const cv::Mat& image, const TexturedPoin
   return out;
 }
 
+MatchedPoints matchedTexturedPoints(const cv::Mat& left, const cv::Mat& disparity, const TexturedPointsParams& params) {
+  MatchedPoints out;
+  if (disparity.size() != left.size() || disparity.type() != CV_32FC1) return out;
+  const int margin = std::max(1, params.window_px / 2) + 2;
+  for (const cv::Point2f& c : texturedPoints(left, params, [&](int x, int y) {
+         const float d = disparity.at<float>(y, x);
+         return d > 0 && x - d >= margin;
+       })) {
+    const float d = disparity.at<float>(cvRound(c.y), cvRound(c.x));
+    out.left.push_back(c);
+    out.right.push_back({c.x - d, c.y});
+    out.disparity.push_back(d);
+  }
+  return out;
+}
+
 }  // namespace nerv::stereo

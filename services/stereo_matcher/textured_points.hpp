@@ -2,7 +2,7 @@
 // into the other view in both directions. The score is the smaller eigenvalue of the
 // structure tensor of the central differences over a square window (Shi and Tomasi's
 // corner measure), which is large only where the image changes both along and across
-// rows. Used by the stereo_matcher's rectification and view-order checks.
+// rows. Used by the stereo_matcher's rectification, view-order, blank-view and shutter checks.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -24,5 +24,18 @@ struct TexturedPointsParams {
 // anything else, or an image smaller than two windows, gives none.
 std::vector<cv::Point2f> texturedPoints(const cv::Mat& image, const TexturedPointsParams& params,
                                         const std::function<bool(int x, int y)>& usable = {});
+
+// Textured points of the left view, where the matcher's disparity puts each in the right
+// view, and that disparity.
+struct MatchedPoints {
+  std::vector<cv::Point2f> left;
+  std::vector<cv::Point2f> right;  // (x - d, y)
+  std::vector<float> disparity;
+};
+
+// The textured points of the left view (as above) that have a disparity d > 0 (disparity:
+// CV_32F, the left view's size) whose match x - d lies window_px / 2 + 2 px or more inside
+// the right view: where a check can follow a point from one view into the other.
+MatchedPoints matchedTexturedPoints(const cv::Mat& left, const cv::Mat& disparity, const TexturedPointsParams& params);
 
 }  // namespace nerv::stereo

@@ -6,7 +6,7 @@
 # right views moved by +1 and -1.5 rows, and turned by 0.15 deg about the optical axis
 # (nerv_misalign, calibration unchanged), with the default config (the first 10 row checks
 # on every frame, so the first verdict comes at the tenth):
-#  - as they are: one line "aligned" in the log, no error;
+#  - as they are: one line "aligned" and one "synchronised" (shutter_sync.hpp) in the log, no error;
 #  - moved: the error row_misaligned in the log and in NERV_HEALTH, naming the offset
 #    within 0.15 px and its direction, and every frame still comes out;
 #  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
@@ -39,6 +39,8 @@ run aligned "$data"
 line=$(grep "rectification check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$line" == *": aligned" ]] || fail "no 'aligned' verdict for the calibrated rig: '$line'"
 [[ "$(matcher_errors aligned)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
+sync=$(grep "shutter check" "$tmp/aligned/logs/services.log" | head -n 1)
+[[ "$sync" == *": synchronised" ]] || fail "no 'synchronised' verdict for the recorded rig: '$sync'"
 pass "calibrated rig: $line"
 
 check_run() {  # check_run NAME: the misalignment error was said, counted, and no frame was lost

@@ -23,8 +23,12 @@ void rigState(const CameraRig& rig, double t, double& pitch_deg, double& roll_de
 }
 
 CameraPose cameraPose(const CameraRig& rig, const World& world, int frame) {
+  return cameraPoseAt(rig, world, frame / rig.fps);
+}
+
+CameraPose cameraPoseAt(const CameraRig& rig, const World& world, double t) {
   CameraPose pose;
-  pose.time_s = frame / rig.fps;
+  pose.time_s = t;
   rigState(rig, pose.time_s, pose.pitch_deg, pose.roll_deg, pose.height_m);
   const double z = rig.speed_mps * pose.time_s;  // distance along the road (flat part: exact)
   const Vec3 n = world.roadNormal(z);

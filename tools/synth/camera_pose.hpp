@@ -27,5 +27,7 @@ struct CameraPose {
 void rigState(const CameraRig& rig, double t_s, double& pitch_deg, double& roll_deg, double& height_m);
 
 CameraPose cameraPose(const CameraRig& rig, const World& world, int frame);
+// The same at any time t [s] (frame / fps for a frame), e.g. between two frames.
+CameraPose cameraPoseAt(const CameraRig& rig, const World& world, double t);
 
 }  // namespace nerv::synth

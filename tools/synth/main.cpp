@@ -1,6 +1,7 @@
 // nerv_synth: renders a synthetic stereo road sequence with exact ground truth.
 //   nerv_synth --scene NAME_OR_YAML --frames N --out DIR [--seed S] [--width W --height H]
-//              [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N] [--quiet]
+//              [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N]
+//              [--right-delay-ms MS] [--quiet]
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -17,12 +18,21 @@ namespace {
 
 const char* const kUsage =
     "usage: nerv_synth --scene NAME_OR_YAML --frames N --out DIR [--seed S] [--width W --height H]\n"
-    "                  [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N] [--quiet]\n"
+    "                  [--scenes-dir DIR] [--supersample K] [--threads T] [--label-min-run N]\n"
+    "                  [--right-delay-ms MS] [--quiet]\n"
     "  NAME resolves to <scenes-dir>/NAME.yaml (default " NERV_SCENES_DIR ")\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+double toMs(const std::string& flag, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !(v >= -1000 && v <= 1000))
+    throw UsageError(flag + " needs milliseconds in [-1000, 1000], got '" + value + "'");
+  return v;
+}
 
 int toInt(const std::string& flag, const std::string& value, int lo, int hi) {
   char* end = nullptr;
@@ -60,6 +70,7 @@ int run(int argc, char** argv) {
     else if (a == "--supersample") options.supersample = toInt(a, v, 1, 4);
     else if (a == "--threads") options.threads = toInt(a, v, 0, 1);
     else if (a == "--label-min-run") options.label_min_run_px = toInt(a, v, 0, 64);
+    else if (a == "--right-delay-ms") options.right_delay_s = toMs(a, v) / 1000.0;
     else throw UsageError("unknown option " + a);
   }
   if (scene.empty()) throw UsageError("--scene is required");

@@ -23,6 +23,10 @@ struct RenderOptions {
   int supersample = 2;
   int threads = 0;      // 0 = OpenCV's thread pool, 1 = the calling thread only
   int label_min_run_px = 0;  // labels: box edges only on rows/columns seeing this many object pixels (0 = every pixel)
+  // The right view taken this much later than the left [s] (negative: earlier): a rig whose
+  // shutters are not triggered together. The labels, the true disparity and the pose are the
+  // left view's.
+  double right_delay_s = 0;
 };
 
 struct RenderedFrame {

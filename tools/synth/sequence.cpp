@@ -13,9 +13,17 @@ SceneSequence::SceneSequence(const SceneSpec& spec) : spec_(spec), world_(buildW
 SynthFrame SceneSequence::render(int frame, const RenderOptions& options) {
   SynthFrame f;
   f.index = frame;
-  world_.setTime(frame / spec_.camera.fps);
+  const double t = frame / spec_.camera.fps;
+  cv::Mat late_right;
+  if (options.right_delay_s != 0) {
+    world_.setTime(t + options.right_delay_s);
+    const CameraPose later = cameraPoseAt(spec_.camera, world_, t + options.right_delay_s);
+    late_right = renderFrame(world_, spec_.camera, later, frame, spec_.seed, options).right;
+  }
+  world_.setTime(t);
   f.pose = pose(frame);
   f.images = renderFrame(world_, spec_.camera, f.pose, frame, spec_.seed, options);
+  if (!late_right.empty()) f.images.right = late_right;
   f.labels = makeLabels(world_, camera(), f.pose, f.images, 1, options.label_min_run_px);
   return f;
 }
