@@ -146,7 +146,7 @@ void Node::guarded(const std::function<void()>& body) {
 }
 
 void Node::publishHealth() {
-  health_t h;
+  health_t h{};  // every count zero until set: lcm-gen's structs leave them uninitialised
   h.utime = nowUtime();
   h.service = options_.service;
   h.instance = options_.instance;
@@ -161,6 +161,11 @@ void Node::publishHealth() {
     h.counter_values.push_back(value);
   }
   h.num_counters = static_cast<int32_t>(h.counter_names.size());
+  for (const auto& [name, value] : gauges_) {
+    h.gauge_names.push_back(name);
+    h.gauge_values.push_back(value);
+  }
+  h.num_gauges = static_cast<int32_t>(h.gauge_names.size());
   h.latency_p50_ms = percentile(latencies_ms_, 0.5);
   h.latency_p95_ms = percentile(latencies_ms_, 0.95);
   double sum = 0;

@@ -82,6 +82,9 @@ class Node {
   void error(const std::string& counter, const std::string& message);
   // A named event that is not an error (shown among the health counters).
   void count(const std::string& counter, int64_t n = 1) { counters_[counter] += n; }
+  // The latest value of a measured quantity (the unit in its name), in every health report
+  // from now on: e.g. the rig's row offset, so that a dashboard plots it before it is an error.
+  void gauge(const std::string& name, double value) { gauges_[name] = value; }
   int64_t counter(const std::string& name) const;
   int64_t framesIn() const { return frames_in_; }
   int64_t framesOut() const { return frames_out_; }
@@ -126,6 +129,7 @@ class Node {
   std::vector<std::function<void()>> ticks_;
   int64_t frames_in_ = 0, frames_out_ = 0, frames_dropped_ = 0, errors_ = 0;
   std::map<std::string, int64_t> counters_;
+  std::map<std::string, double> gauges_;
   std::vector<double> latencies_ms_;   // since the last health report
   std::vector<double> processing_ms_;  // since the last health report
   std::string last_error_;

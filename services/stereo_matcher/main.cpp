@@ -45,6 +45,7 @@ int serve(ServiceConfig& config) {
   config.section().get("row_check_every_frames", rig_params.check_every, 0, 100000);
   config.section().get("max_row_offset_px", rig_params.max_row_offset_px, 0.05, 100.0);
   config.section().get("max_view_delay_ms", rig_params.max_view_delay_ms, 0.1, 1000.0);
+  config.section().get("max_disparity_offset_px", rig_params.max_disparity_offset_px, 0.05, 100.0);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -57,6 +58,7 @@ int serve(ServiceConfig& config) {
     for (const stereo::RigFinding& f : findings) {
       if (f.kind == stereo::RigFinding::Kind::Count) node.count(f.name);
       else if (f.kind == stereo::RigFinding::Kind::Error) node.error(f.name, prefix + f.message);
+      else if (f.kind == stereo::RigFinding::Kind::Gauge) node.gauge(f.name, f.value);
       else std::fprintf(stderr, "stereo_matcher: %s%s\n", prefix.c_str(), f.message.c_str());
     }
   };
@@ -131,7 +133,7 @@ int serve(ServiceConfig& config) {
     node.countOut(frame.header.utime, out.processing_ms);
 
     report(rig.afterMatching(matched_left, matched_right, disparity,
-                             {frame.header.utime, out.calib.fx, out.calib.cx, out.calib.cy}),
+                             {frame.header.utime, out.calib.fx, out.calib.cx, out.calib.cy, out.calib.baseline_m}),
            what);
   }, queue);
   return node.spin();

@@ -5,8 +5,10 @@
 // the other side of the limit from the last verdict (a rig knocked mid-drive, or mended)
 // makes the next checks run on every frame, and the verdict is of those alone: it comes
 // 10-19 frames after the knock instead of the 60-160 a window of every-tenth-frame checks
-// needed to turn. On the same frames, while driving, whether the two views were taken at
-// the same moment (shutter_sync.hpp), against the frame before. The service reports what comes
+// needed to turn. On the same frames, while driving, the vehicle's forward step from the
+// frame before is the reference for two more: whether the two views were taken at the same
+// moment (shutter_sync.hpp) and whether every disparity is off by the same amount
+// (disparity_offset.hpp). The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "disparity_offset.hpp"
 #include "frozen_view.hpp"
 #include "rectification_check.hpp"
 #include "shutter_sync.hpp"
@@ -30,20 +33,23 @@ struct RigCheckParams {
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
   float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error
+  float max_disparity_offset_px = 0.5f;  // every disparity off by more than this either way: an error
 };
 
-// What the shutter check needs of a matched pair besides its views: when it was taken and the
-// rectified camera. fx = 0: no shutter check.
+// What the checks against the vehicle's motion need of a matched pair besides its views: when
+// it was taken and the rectified camera. fx = 0: no such checks.
 struct PairTiming {
   int64_t utime_us = 0;  // capture time [us]
   double fx = 0, cx = 0, cy = 0;
+  double baseline_m = 0;  // to say what an offset costs at 40 m (0: not said)
 };
 
 struct RigFinding {
-  enum class Kind { Count, Error, Log };
+  enum class Kind { Count, Error, Log, Gauge };
   Kind kind;
-  std::string name;     // the counter (Count, Error)
+  std::string name;     // the counter (Count, Error) or the gauge, its unit in the name (Gauge)
   std::string message;  // one line (Error, Log)
+  double value = 0;     // the gauge's value (Gauge): what a verdict decided on
 };
 
 class RigCheck {
@@ -56,8 +62,8 @@ class RigCheck {
                                         const PairTiming& timing = {});
 
  private:
-  void checkShutters(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
-                     std::vector<RigFinding>& out);
+  void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
+                          std::vector<RigFinding>& out);
 
   RigCheckParams p_;
   FrozenViewCheck frozen_;
@@ -74,9 +80,10 @@ class RigCheck {
   cv::Mat lefts_[2];
   int64_t utimes_[2] = {0, 0};
   int newest_ = -1;
-  ViewDelayMonitor delays_;
+  MedianVerdict delays_, offsets_;
   bool unsynchronised_ = false;
-  float delay_said_ = 1e9f;  // the delay of the last "synchronised" line [ms]
+  float delay_said_ = 1e9f;   // the delay of the last "synchronised" line [ms]
+  float offset_said_ = 1e9f;  // the offset of the last "consistent" line [px]
   int blank_in_a_row_ = 0, swapped_in_a_row_ = 0;
 };
 

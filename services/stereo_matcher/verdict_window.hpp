@@ -3,7 +3,10 @@
 // row check's and the shutter check's monitors (rectification_check.hpp, shutter_sync.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <deque>
+#include <vector>
 
 namespace nerv::stereo {
 
@@ -28,6 +31,31 @@ class VerdictWindow {
   int window_;
   int since_verdict_ = 0;
   std::deque<T> items_;
+};
+
+// The median of the last `window` values of one measured quantity, a verdict every `window`
+// values, and whether the median lies beyond a limit either way (the shutter delay, the
+// disparity offset).
+class MedianVerdict {
+ public:
+  MedianVerdict(int window, float limit) : values_(window), limit_(limit) {}
+  // Non-finite values are ignored. True when a verdict is due.
+  bool add(float v) { return std::isfinite(v) && values_.add(v); }
+  int samples() const { return values_.size(); }
+  float median() const {
+    std::vector<float> v(values_.items().begin(), values_.items().end());
+    if (v.empty()) return 0;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  }
+  float lowest() const { return samples() ? *std::min_element(values_.items().begin(), values_.items().end()) : 0; }
+  float highest() const { return samples() ? *std::max_element(values_.items().begin(), values_.items().end()) : 0; }
+  bool beyond() const { return samples() > 0 && std::abs(median()) > limit_; }
+  float limit() const { return limit_; }
+
+ private:
+  VerdictWindow<float> values_;
+  float limit_;
 };
 
 }  // namespace nerv::stereo

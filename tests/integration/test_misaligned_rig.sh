@@ -6,7 +6,10 @@
 # right views moved by +1 and -1.5 rows, and turned by 0.15 deg about the optical axis
 # (nerv_misalign, calibration unchanged), with the default config (the first 10 row checks
 # on every frame, so the first verdict comes at the tenth):
-#  - as they are: one line "aligned" and one "synchronised" (shutter_sync.hpp) in the log, no error;
+#  - as they are: one line "aligned", one "synchronised" (shutter_sync.hpp) and one "within the
+#    limit" (disparity_offset.hpp) in the log, no error;
+#  - moved a column sideways (a camera turned about its vertical axis): disparity_offset, naming
+#    about 1 px less and objects read farther, and nothing else;
 #  - moved: the error row_misaligned in the log and in NERV_HEALTH, naming the offset
 #    within 0.15 px and its direction, and every frame still comes out;
 #  - turned: the rows' median stays near 0, yet row_misaligned names the turn within
@@ -41,6 +44,8 @@ line=$(grep "rectification check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$(matcher_errors aligned)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
 sync=$(grep "shutter check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$sync" == *": synchronised" ]] || fail "no 'synchronised' verdict for the recorded rig: '$sync'"
+offset=$(grep "disparity offset check" "$tmp/aligned/logs/services.log" | head -n 1)
+[[ "$offset" == *": within the limit" ]] || fail "no disparity offset verdict for the recorded rig: '$offset'"
 pass "calibrated rig: $line"
 
 check_run() {  # check_run NAME: the misalignment error was said, counted, and no frame was lost
@@ -49,6 +54,8 @@ check_run() {  # check_run NAME: the misalignment error was said, counted, and n
   (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
   tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:frame[0-9]*:rectification' \
     || fail "$1: NERV_HEALTH's last_error is not the misalignment"
+  gauge=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"row_offset_px":[^,}]*' | cut -d: -f2)
+  awk -v g="$gauge" 'BEGIN { exit !(g > 0.4) }' || fail "$1: NERV_HEALTH's gauge row_offset_px is '$gauge'"
   out=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
   in=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
   [[ "$out" == "$in" && "$in" -gt 0 ]] || fail "$1: frames lost on the misaligned rig: $in in, $out out"
@@ -75,6 +82,20 @@ worst=$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")
 near "$turn" 0.15 0.02 || fail "turned by 0.15 deg, read $turn deg: '$line'"
 awk -v w="$worst" 'BEGIN { exit !(w > 0.4) }' || fail "turned by 0.15 deg, rows up to only $worst px off: '$line'"
 pass "right views turned by 0.15 deg: ${line#*row_misaligned: }; $out of $in frames out"
+# A right camera turned about its vertical axis: the right views moved a column to the right,
+# every disparity a pixel smaller. The rows stay aligned; the forward motion shows the offset.
+"$BIN/nerv_misalign" --data "$data" --out "$tmp/data_cols" --cols -1 >/dev/null || fail "nerv_misalign --cols -1"
+run cols "$tmp/data_cols"
+line=$(grep "disparity_offset" "$tmp/cols/logs/services.log" | head -n 1)
+[[ "$line" == *"px less than the forward motion says"*"(objects read farther); recalibrate the rig" ]] \
+  || fail "cols: no disparity_offset error: '$line' $(grep -i 'offset check\|rectification' "$tmp/cols/logs/services.log" | head -n 3)"
+read_px=$(sed -E 's/.*the disparity reads ([0-9.]+) px less.*/\1/' <<<"$line")
+awk -v r="$read_px" 'BEGIN { exit !(r >= 0.7 && r <= 1.6) }' || fail "cols: a 1 px offset read as $read_px px: '$line'"
+grep -q "row_misaligned\|views_unsynchronised" "$tmp/cols/logs/services.log" && fail "cols: also reported as rows or shutters"
+gauge=$(tr -d '\n ' <"$tmp/cols/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"disparity_offset_px":[^,}]*' | cut -d: -f2)
+awk -v g="$gauge" 'BEGIN { exit !(g <= -0.7) }' || fail "cols: NERV_HEALTH's gauge disparity_offset_px is '$gauge'"
+pass "right views a column over: ${line#*disparity_offset: }"
+
 # Knocked mid-drive: frames 0-10 as recorded, 11-32 with the right views one row down (from the
 # +1 set above, the sequence played on), 33 frames at 10 Hz once.
 "$BIN/nerv_misalign" --data "$data" --out "$tmp/data_asis" >/dev/null || fail "nerv_misalign (as recorded)"
@@ -132,4 +153,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "9 passed, 0 failed"
+echo "10 passed, 0 failed"

@@ -4,7 +4,8 @@
 # --right-delay-ms), played twice through the four services with the default config. The real
 # stereo_matcher compares each checked pair with the frame before (shutter_sync.hpp):
 #  - delayed: the error views_unsynchronised in the log and in NERV_HEALTH, naming a delay
-#    of 10 +- 3 ms with the right view after the left, and every frame still comes out;
+#    of 10 +- 3 ms with the right view after the left (also as NERV_HEALTH's gauge
+#    view_delay_ms), and every frame still comes out;
 #  - the same street rendered with the views together: "synchronised" in the log, no error.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
@@ -31,6 +32,8 @@ awk -v m="$ms" 'BEGIN { exit !(m >= 7 && m <= 13) }' && [[ "$side" == after ]] \
 (( $(field late errors) >= 1 )) || fail "NERV_HEALTH of the stereo_matcher counts no error"
 tr -d '\n ' <"$tmp/late/summary.json" | grep -q '"last_error":"views_unsynchronised:frame[0-9]*:shutters' \
   || fail "NERV_HEALTH's last_error is not the shutters: $(field late last_error)"
+gauge=$(field late view_delay_ms)
+awk -v g="$gauge" 'BEGIN { exit !(g >= 7 && g <= 13) }' || fail "NERV_HEALTH's gauge view_delay_ms is '$gauge'"
 in=$(field late frames_in) out=$(field late frames_out)
 [[ "$in" == 24 && "$out" == 24 ]] || fail "frames lost: $in in, $out out"
 pass "right view 10 ms late: ${line#*views_unsynchronised: }; $out of $in frames out"

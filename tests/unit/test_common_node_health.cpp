@@ -55,3 +55,19 @@ TEST(commonNodeHealth, OnlySkewedFramesStillCountAsWorking) {
   EXPECT_EQ(counterOf(h, "clock_skew_frames"), 1);
   EXPECT_EQ(h.status, "ok") << "frames went out: not idle";
 }
+
+TEST(commonNodeHealth, GaugesCarryTheirLatestValue) {
+  Node node(memq());
+  EXPECT_EQ(reportOnce(node).num_gauges, 0);
+  node.gauge("row_offset_px", 0.12);
+  node.gauge("view_delay_ms", -0.5);
+  node.gauge("row_offset_px", 0.93);  // the latest value replaces the one before
+  const health_t h = reportOnce(node);
+  ASSERT_EQ(h.num_gauges, 2);
+  ASSERT_EQ(h.gauge_names.size(), 2u);
+  EXPECT_EQ(h.gauge_names[0], "row_offset_px");
+  EXPECT_DOUBLE_EQ(h.gauge_values[0], 0.93);
+  EXPECT_EQ(h.gauge_names[1], "view_delay_ms");
+  EXPECT_DOUBLE_EQ(h.gauge_values[1], -0.5);
+  EXPECT_EQ(reportOnce(node).num_gauges, 2) << "a gauge stays in every report";
+}

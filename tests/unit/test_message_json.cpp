@@ -106,5 +106,8 @@ TEST(toolsMessageJson, ExportsEveryFieldOfEveryMessage) {
   health.counter_names = {"bad_size"};
   health.counter_values = {1};
   health.num_counters = 1;
+  health.gauge_names = {"row_offset_px"};
+  health.gauge_values = {0.1};
+  health.num_gauges = 1;
   expectEveryField(health, "health_t");
 }

@@ -3,6 +3,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+
 #include "rig_check.hpp"
 #include "stereo_scene_texture.hpp"
 
@@ -21,10 +23,18 @@ cv::Mat rightView(const cv::Mat& left, double dy) {
 
 const cv::Mat kWall(240, 640, CV_32FC1, cv::Scalar(20.0f));
 
+// The findings' names in order, "log" for a log line; gauges left out (GaugesAtEachVerdict).
 std::string names(const std::vector<RigFinding>& findings) {
   std::string out;
-  for (const RigFinding& f : findings) out += (out.empty() ? "" : " ") + (f.name.empty() ? "log" : f.name);
+  for (const RigFinding& f : findings)
+    if (f.kind != RigFinding::Kind::Gauge) out += (out.empty() ? "" : " ") + (f.name.empty() ? "log" : f.name);
   return out;
+}
+
+double gauge(const std::vector<RigFinding>& findings, const std::string& name) {
+  for (const RigFinding& f : findings)
+    if (f.kind == RigFinding::Kind::Gauge && f.name == name) return f.value;
+  return NAN;
 }
 
 TEST(stereoRigCheck, FirstTenFramesThenEveryTenthAndAVerdictEveryTenChecks) {
@@ -126,6 +136,17 @@ TEST(stereoRigCheck, AKnockMidDriveIsSaidWithinTwentyFrames) {
   const std::vector<RigFinding> mended = rig.afterMatching(left, aligned, kWall);  // frame 149
   ASSERT_EQ(names(mended), "row_checks log");
   EXPECT_NE(mended[1].message.find(": aligned"), std::string::npos) << mended[1].message;
+}
+
+// Each row verdict sets the gauges NERV_HEALTH carries: how far the rows are off, the turn.
+TEST(stereoRigCheck, GaugesAtEachVerdict) {
+  RigCheck rig;
+  const cv::Mat left = texture(7), right = rightView(left, 0.7);
+  for (int frame = 1; frame <= 9; ++frame) EXPECT_TRUE(std::isnan(gauge(rig.afterMatching(left, right, kWall), "row_offset_px")));
+  const std::vector<RigFinding> tenth = rig.afterMatching(left, right, kWall);
+  EXPECT_NEAR(gauge(tenth, "row_offset_px"), 0.7, 0.05);
+  EXPECT_NEAR(gauge(tenth, "row_turn_deg"), 0.0, 0.01);
+  EXPECT_TRUE(std::isnan(gauge(tenth, "view_delay_ms")));  // no timing given: no shutter check
 }
 
 // One odd reading (glare, a bump) makes ten checks in a row, whose verdict stands as it was.

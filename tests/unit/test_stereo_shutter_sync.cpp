@@ -6,50 +6,16 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
-#include <map>
-#include <memory>
 
 #include "rig_check.hpp"
-#include "scene_yaml.hpp"
-#include "sequence.hpp"
 #include "shutter_sync.hpp"
-#include "stereo_matcher.hpp"
+#include "stereo_rendered_pair.hpp"
 
 namespace nerv::stereo {
 namespace {
 
-struct Pair {
-  cv::Mat previous_left, left, right, disparity;  // frame k-1's left view; frame k as matched
-  double fx = 0, cx = 0, cy = 0;
-};
-
-cv::Mat gray(const cv::Mat& bgr) {
-  cv::Mat g;
-  cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
-  return g;
-}
-
-// Frames k - 1 and k of the urban scene, frame k's right view taken delay_ms after its left.
-const Pair& renderedPair(int k, double delay_ms) {
-  static std::map<std::pair<int, double>, Pair> cache;
-  auto it = cache.find({k, delay_ms});
-  if (it != cache.end()) return it->second;
-  synth::SceneSpec spec =
-      synth::loadScene(synth::resolveScenePath("urban", std::string(NERV_SOURCE_DIR) + "/config/scenes"));
-  synth::SceneSequence seq(spec);
-  synth::RenderOptions options;
-  Pair p;
-  p.previous_left = gray(seq.render(k - 1, options).images.left);
-  options.right_delay_s = delay_ms / 1000.0;
-  const synth::SynthFrame f = seq.render(k, options);
-  p.left = gray(f.images.left);
-  p.right = gray(f.images.right);
-  static const std::unique_ptr<StereoMatcher> matcher = StereoMatcher::create(Params{});
-  cv::Mat confidence;
-  matcher->compute(p.left, p.right, p.disparity, confidence);
-  p.fx = seq.camera().fx, p.cx = seq.camera().cx, p.cy = seq.camera().cy;
-  return cache.emplace(std::make_pair(k, delay_ms), p).first->second;
-}
+using test::Pair;
+using test::renderedPair;
 
 // The delay read [ms] at 10 frames a second.
 ShutterSync measure(const Pair& p) {
@@ -60,8 +26,8 @@ TEST(stereoShutterSync, ReadsTheDelayOfRenderedViews) {
   const ShutterSync together = measure(renderedPair(4, 0));
   ASSERT_TRUE(together.valid) << together.points << " points, motion " << together.motion_px << " px";
   EXPECT_GT(together.points, 150);
-  // The forward step between the frames, 0.8 m: k = -s / (f B) = -0.00205 (f 721.5 px, B 0.54 m).
-  EXPECT_NEAR(together.k_motion, -0.8 / (721.5377 * 0.54), 0.0003);
+  // The forward step between the frames, 0.8 m: k = s / (f B) = 0.00205 (f 721.5 px, B 0.54 m).
+  EXPECT_NEAR(together.k_motion, 0.8 / (721.5377 * 0.54), 0.0002);
   EXPECT_NEAR(together.offset * 100.0, 0.0, 3.0);
   const ShutterSync late = measure(renderedPair(4, 10));
   ASSERT_TRUE(late.valid);
@@ -99,19 +65,19 @@ TEST(stereoShutterSync, BadInputsGiveNoMeasurement) {
   EXPECT_FALSE(measureShutterSync(flat, flat, flat, p.disparity, p.fx, p.cx, p.cy).valid);
 }
 
-TEST(stereoShutterSync, MonitorTakesTheMedianEveryTenDelays) {
-  ViewDelayMonitor m(10, 2.0f);
+TEST(stereoShutterSync, VerdictOnTheMedianOfTenDelays) {
+  MedianVerdict m(10, 2.0f);
   for (int i = 0; i < 9; ++i) EXPECT_FALSE(m.add(i == 4 ? 40.0f : 0.5f)) << i;
   EXPECT_FALSE(m.add(NAN));
   EXPECT_TRUE(m.add(0.5f));
   EXPECT_FLOAT_EQ(m.median(), 0.5f);
-  EXPECT_FALSE(m.unsynchronised());  // one odd reading does not decide
-  EXPECT_EQ(m.describe(),
+  EXPECT_FALSE(m.beyond());  // one odd reading does not decide
+  EXPECT_EQ(describeViewDelay(m),
             "the right view is taken 0.5 ms after the left (median of the last 10 checks while moving, 0.5 to 40.0 ms)");
   for (int i = 0; i < 9; ++i) EXPECT_FALSE(m.add(-4.0f));
   EXPECT_TRUE(m.add(-4.0f));
-  EXPECT_TRUE(m.unsynchronised());
-  EXPECT_NE(m.describe().find("taken 4.0 ms before the left"), std::string::npos) << m.describe();
+  EXPECT_TRUE(m.beyond());
+  EXPECT_NE(describeViewDelay(m).find("taken 4.0 ms before the left"), std::string::npos) << describeViewDelay(m);
 }
 
 // Through the rig check, every frame checked: frames 3 and 4 fed in turn, so every other
@@ -149,6 +115,10 @@ TEST(stereoShutterSync, RigCheckSaysWhenTheViewsAreApart) {
   EXPECT_NE(said.find("views_unsynchronised: shutters: the right view is taken "), std::string::npos) << said;
   EXPECT_NE(said.find(" ms after the left (median of the last 10 checks while moving"), std::string::npos) << said;
   EXPECT_NE(said.find("(max_view_delay_ms 2.0): the cameras are not triggered together"), std::string::npos) << said;
+  double delay = NAN;  // the gauge NERV_HEALTH carries
+  for (const RigFinding& f : late)
+    if (f.kind == RigFinding::Kind::Gauge && f.name == "view_delay_ms") delay = f.value;
+  EXPECT_NEAR(delay, 10.0, 3.0);
 
   RigCheck together(every);
   said.clear();

@@ -164,6 +164,11 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     j.field("errors", h.errors);
     j.field("last_error", h.last_error);
     j.field("version", h.version);
+    j.key("gauges");  // last: the tests' greps of a service's object stop at the first '}'
+    j.beginObject();
+    for (int i = 0; i < h.num_gauges && i < static_cast<int>(h.gauge_values.size()); ++i)
+      j.field(h.gauge_names[i], h.gauge_values[i]);
+    j.endObject();
     j.endObject();
   }
   j.endObject();

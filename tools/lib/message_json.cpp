@@ -275,6 +275,9 @@ void write(JsonWriter& j, const health_t& m) {
   j.field("num_counters", m.num_counters);
   array(j, "counter_names", m.counter_names);
   array(j, "counter_values", m.counter_values);
+  j.field("num_gauges", m.num_gauges);
+  array(j, "gauge_names", m.gauge_names);
+  array(j, "gauge_values", m.gauge_values);
   j.field("latency_p50_ms", m.latency_p50_ms);
   j.field("latency_p95_ms", m.latency_p95_ms);
   j.field("processing_ms", m.processing_ms);

@@ -1,17 +1,19 @@
 // nerv_misalign: a rectified sequence as a faulty rig delivers it, the calibration file
-// unchanged: the right views moved by rows or turned (a rig that lost its calibration), the
+// unchanged: the right views moved by rows or turned (a rig that lost its calibration), moved
+// sideways (a right camera turned about its vertical axis: every disparity off by the same), the
 // views swapped (crossed cables or topics), the right view stopped (a stuck camera) or blank
 // (a fogged lens). For
 // measuring what each costs and testing that the stereo_matcher's checks notice (docs/stereo.md
 // "Is the rig still rectified?", "Are the views the right way round?", "Has a camera stopped?",
 // "Does one view show nothing?").
 //
-//   nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right]
+//   nerv_misalign --data DIR --out DIR [--rows PX] [--cols PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right]
 //                 [--frames N] [--from-frame K]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
-// right of it move down; then moved by PX rows, positive = down; bilinear, the pixels moved in
+// right of it move down; then moved by PX rows, positive = down, and by --cols PX columns to the
+// left, so that every disparity grows by PX (negative: shrinks); bilinear, the pixels moved in
 // from outside repeat the border; --swap then writes each view as the other, as a rig with its
 // cables or topics crossed delivers them; --freeze-right K repeats the right view of the K-th
 // frame (from 0) in every later frame, as a stopped camera or driver delivers it; --blank-right
@@ -39,7 +41,7 @@ namespace fs = std::filesystem;
 namespace {
 
 int usage(const char* why) {
-  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right] [--frames N] [--from-frame K]\n", why);
+  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--cols PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right] [--frames N] [--from-frame K]\n", why);
   return 2;
 }
 
@@ -56,7 +58,7 @@ void writeCalibration(const std::string& path, const StereoCamera& c) {
 
 int main(int argc, char** argv) {
   std::string data, out;
-  double rows = 0, roll_deg = 0;
+  double rows = 0, cols = 0, roll_deg = 0;
   int max_frames = -1, freeze_right = -1, from_frame = 0;
   bool swap = false, blank_right = false;
   for (int i = 1; i < argc; ++i) {
@@ -71,6 +73,7 @@ int main(int argc, char** argv) {
     if (a == "--data") data = v;
     else if (a == "--out") out = v;
     else if (a == "--rows") rows = std::strtod(v.c_str(), &end);
+    else if (a == "--cols") cols = std::strtod(v.c_str(), &end);
     else if (a == "--roll-deg") roll_deg = std::strtod(v.c_str(), &end);
     else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else if (a == "--from-frame") from_frame = static_cast<int>(std::strtol(v.c_str(), &end, 10));
@@ -80,6 +83,7 @@ int main(int argc, char** argv) {
   }
   if (data.empty() || out.empty()) return usage("--data and --out are required");
   if (!std::isfinite(rows) || std::fabs(rows) > 100) return usage("--rows must be a number of rows within +-100");
+  if (!std::isfinite(cols) || std::fabs(cols) > 100) return usage("--cols must be a number of columns within +-100");
   if (!std::isfinite(roll_deg) || std::fabs(roll_deg) > 10) return usage("--roll-deg must be within +-10");
   if (from_frame < 0) return usage("--from-frame must be a frame number from 0");
   try {
@@ -105,7 +109,7 @@ int main(int argc, char** argv) {
       // x' = cx + c (x - cx) - s (y - cy), y' = cy + s (x - cx) + c (y - cy) + rows.
       const double th = faulty ? roll_deg * CV_PI / 180 : 0.0, c = std::cos(th), sn = std::sin(th);
       const double cx = f.camera.cx, cy = f.camera.cy;
-      const cv::Mat shift = (cv::Mat_<double>(2, 3) << c, -sn, cx - c * cx + sn * cy,  //
+      const cv::Mat shift = (cv::Mat_<double>(2, 3) << c, -sn, cx - c * cx + sn * cy - (faulty ? cols : 0.0),  //
                              sn, c, cy - sn * cx - c * cy + (faulty ? rows : 0.0));
       cv::Mat moved;
       cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
@@ -123,8 +127,8 @@ int main(int argc, char** argv) {
     writeCalibration(out + "/calib.yaml", ds.frames.front().camera);
     if (fs::exists(data + "/extrinsics.txt"))
       fs::copy_file(data + "/extrinsics.txt", out + "/extrinsics.txt", fs::copy_options::overwrite_existing);
-    std::printf("%d frames, right views%s turned by %+.3f deg and moved by %+.2f rows%s%s%s: %s\n", n,
-                from_frame > 0 ? cv::format(" from frame %d on", from_frame).c_str() : "", roll_deg, rows,
+    std::printf("%d frames, right views%s turned by %+.3f deg, moved by %+.2f rows and %+.2f columns to the left%s%s%s: %s\n", n,
+                from_frame > 0 ? cv::format(" from frame %d on", from_frame).c_str() : "", roll_deg, rows, cols,
                 freeze_right >= 0 ? cv::format(", frozen from frame %d on", freeze_right).c_str() : "",
                 blank_right ? ", blurred to nothing" : "",
                 swap ? ", then left and right swapped" : "", out.c_str());

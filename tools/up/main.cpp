@@ -99,11 +99,17 @@ struct HealthBoard {
       for (int i = 0; i < h.num_counters; ++i)
         if (h.counter_names[i] == "clock_skew_frames" && h.counter_values[i] > 0)
           skew = "  clock behind the camera's: " + std::to_string(h.counter_values[i]) + " frames";
-      std::fprintf(out, "%-26s pid %-7d %-8s in %-6lld out %-6lld dropped %-4lld errors %-4lld p95 %6.1f ms  %5.1f ms/frame%s%s%s\n",
+      std::string gauges;  // "  row_offset_px 0.10  view_delay_ms 0.4"
+      for (int i = 0; i < h.num_gauges; ++i) {
+        char g[120];
+        std::snprintf(g, sizeof g, "  %s %.3g", h.gauge_names[i].c_str(), h.gauge_values[i]);
+        gauges += g;
+      }
+      std::fprintf(out, "%-26s pid %-7d %-8s in %-6lld out %-6lld dropped %-4lld errors %-4lld p95 %6.1f ms  %5.1f ms/frame%s%s%s%s\n",
                    key.c_str(), h.pid, age > 3 ? "silent" : h.status.c_str(), (long long)h.frames_in,
                    (long long)h.frames_out, (long long)h.frames_dropped, (long long)h.errors,
-                   h.latency_p95_ms, h.processing_ms, skew.c_str(), h.last_error.empty() ? "" : "  last: ",
-                   h.last_error.c_str());
+                   h.latency_p95_ms, h.processing_ms, skew.c_str(), gauges.c_str(),
+                   h.last_error.empty() ? "" : "  last: ", h.last_error.c_str());
     }
   }
   // The builds heard: one line naming each when they differ (always with `always`).
@@ -124,7 +130,7 @@ struct HealthBoard {
 void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const std::string& host,
                              const std::vector<Child>& children, const std::string& last_event,
                              bool restarted_since_last) {
-  health_t h;
+  health_t h{};
   h.utime = nowUtime();
   h.service = "nerv_up";
   h.instance = host;
@@ -144,6 +150,7 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
     h.counter_values.push_back(c.hangs);
   }
   h.num_counters = static_cast<int32_t>(h.counter_names.size());
+  h.num_gauges = 0;  // lcm-gen's structs leave their counts uninitialised: each one set here
   h.latency_p50_ms = h.latency_p95_ms = h.processing_ms = 0;
   // degraded: a service is down (waiting for its restart) or was restarted since the last report.
   h.status = all_running && !restarted_since_last ? "ok" : "degraded";
