@@ -33,7 +33,7 @@ struct RigCheckParams {
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
   float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error
-  float max_disparity_offset_px = 0.5f;  // every disparity off by more than this either way: an error
+  float max_disparity_offset_px = 0.6f;  // every disparity off by more than this either way: an error
 };
 
 // What the checks against the vehicle's motion need of a matched pair besides its views: when
