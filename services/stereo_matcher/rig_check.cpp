@@ -149,10 +149,12 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   if (offsets_.beyond()) {
     // A disparity e too large reads a point at Z as f B / (f B / Z + e): nearer.
     const double fb = timing.fx * timing.baseline_m, d40 = fb / 40.0;
-    const std::string cost =
-        fb > 0 ? cv::format("; every distance is off, %.0f %% at 40 m (objects read %s)", 100.0 * std::abs(e) / (d40 + e),
-                            e > 0 ? "nearer" : "farther")
-               : "; every distance is off";
+    std::string cost = "; every distance is off";
+    if (fb > 0 && d40 + e > 0.05)
+      cost = cv::format("; every distance is off, %.0f %% at 40 m (objects read %s)", 100.0 * std::abs(e) / (d40 + e),
+                        e > 0 ? "nearer" : "farther");
+    else if (fb > 0)
+      cost += ", and nothing at 40 m is measured at all";
     out.push_back({RigFinding::Kind::Error, "disparity_offset",
                    "disparity: " + describeDisparityOffset(offsets_) +
                        cv::format(" (max_disparity_offset_px %.2f): a camera turned about its vertical axis since "
