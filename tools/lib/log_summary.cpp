@@ -228,11 +228,14 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     }
     std::map<std::string, int> builds;  // which builds produced the log
     for (const auto& [name, h] : last_health) {
-      std::snprintf(buf, sizeof buf, "health %-22s in %lld out %lld dropped %lld errors %lld%s%s\n",
-                    name.c_str(), (long long)h.frames_in, (long long)h.frames_out,
-                    (long long)h.frames_dropped, (long long)h.errors,
-                    h.last_error.empty() ? "" : "  last: ", h.last_error.c_str());
+      std::snprintf(buf, sizeof buf, "health %-22s in %lld out %lld dropped %lld errors %lld", name.c_str(),
+                    (long long)h.frames_in, (long long)h.frames_out, (long long)h.frames_dropped, (long long)h.errors);
       t += buf;
+      for (int i = 0; i < h.num_gauges && i < static_cast<int>(h.gauge_values.size()); ++i) {
+        std::snprintf(buf, sizeof buf, "  %s %.3g", h.gauge_names[i].c_str(), h.gauge_values[i]);
+        t += buf;
+      }
+      t += (h.last_error.empty() ? "" : "  last: " + h.last_error) + "\n";
       ++builds[h.version.empty() ? "unknown" : h.version];
     }
     for (const auto& [version, n] : builds) t += "build nerv " + version + ": " + std::to_string(n) + " processes\n";
