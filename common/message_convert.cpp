@@ -121,7 +121,7 @@ RawStereoCalibration toRawCalibration(const stereo_calibration_t& c) {
 }
 
 image_t encodeImage(const cv::Mat& image, const std::string& encoding, int jpeg_quality) {
-  image_t msg;
+  image_t msg{};
   msg.width = image.cols;
   msg.height = image.rows;
   msg.channels = image.channels();
@@ -243,7 +243,7 @@ void encodeConfidence(const cv::Mat& confidence, disparity_t& msg) {
 }
 
 ground_model_t toMessage(const GroundModel& g) {
-  ground_model_t m;
+  ground_model_t m{};
   m.valid = g.valid;
   m.source = g.source;
   m.vd_slope = g.vd_slope;
@@ -273,7 +273,7 @@ GroundModel fromMessage(const ground_model_t& m) {
 }
 
 stixel_t toMessage(const Stixel& s) {
-  stixel_t m;
+  stixel_t m{};
   m.u = s.u;
   m.width = s.width;
   m.top_row = s.top_row;
@@ -301,7 +301,7 @@ Stixel fromMessage(const stixel_t& m) {
 }
 
 roi_t toMessage(const Hypothesis& h) {
-  roi_t m;
+  roi_t m{};
   m.id = h.id;
   m.x = h.box.x;
   m.y = h.box.y;
@@ -338,7 +338,7 @@ Hypothesis fromMessage(const roi_t& m) {
 }
 
 normal_stats_t toMessage(const NormalStats& s) {
-  normal_stats_t m;
+  normal_stats_t m{};
   m.roi_id = s.roi_id;
   m.num_samples = s.num_samples;
   m.num_normals = s.num_normals;
@@ -414,7 +414,7 @@ PoseEstimate fromMessage(const extrinsics_t& m) {
 }
 
 detection_t toDetection(const Hypothesis& h, const Verdict& v) {
-  detection_t d;
+  detection_t d{};
   d.roi_id = h.id;
   d.x = h.box.x;
   d.y = h.box.y;
@@ -438,7 +438,7 @@ detection_t toDetection(const Hypothesis& h, const Verdict& v) {
 stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, const std::vector<Stixel>& stixels,
                          const std::vector<Hypothesis>& hypotheses, float processing_ms,
                          const ObservedFreeSpace& observed) {
-  stixels_t out;
+  stixels_t out{};
   out.header = header;
   out.ground = toMessage(ground);
   for (const auto& s : stixels) out.stixels.push_back(toMessage(s));
@@ -458,7 +458,7 @@ stixels_t stixelsMessage(const header_t& header, const GroundModel& ground, cons
 surface_normals_t surfaceNormalsMessage(const header_t& header, int interval_px, int ground_samples,
                                         const float ground_normal[3], const std::vector<NormalStats>& rois,
                                         float processing_ms) {
-  surface_normals_t out;
+  surface_normals_t out{};
   out.header = header;
   out.interval_px = interval_px;
   out.ground_samples = ground_samples;

@@ -44,7 +44,7 @@ int serve(ServiceConfig& config) {
                                                     smsg ? fromMessage(smsg->ground) : GroundModel{});
     const float ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-    extrinsics_t ext;
+    extrinsics_t ext{};
     ext.header = dmsg.header;
     fillExtrinsics(result.pose, ext);
     ext.processing_ms = ms;

@@ -64,7 +64,7 @@ int serve(ServiceConfig& config) {
   };
   // Kept across frames, every field set anew each time: its 0.9 + 0.5 MB arrays keep
   // their capacity instead of being allocated (and page-faulted) per frame.
-  disparity_t out;
+  disparity_t out{};
   warmUp(config, [&](const WarmupSize& size) {
     warmupPair(size, left, right);
     matcher->compute(left, right, disparity, confidence);

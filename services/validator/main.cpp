@@ -31,7 +31,7 @@ int serve(ServiceConfig& config) {
     if (nmsg)
       for (const auto& s : nmsg->rois) stats.push_back(fromMessage(s));
     const std::vector<Verdict> verdicts = validator::validate(hypotheses, stats, params);
-    detections_t out;
+    detections_t out{};
     out.header = smsg.header;
     out.num_kept = 0;
     for (size_t i = 0; i < hypotheses.size(); ++i) {

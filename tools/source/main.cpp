@@ -96,7 +96,7 @@ stereo_frame_t makeFrame(const Dataset& ds, const DatasetFrame& f, const std::st
   const cv::Mat left = cv::imread(f.left_path, mode), right = cv::imread(f.right_path, mode);
   if (left.empty()) throw std::runtime_error("image " + f.left_path + " cannot be read");
   if (right.empty()) throw std::runtime_error("image " + f.right_path + " cannot be read");
-  stereo_frame_t msg;
+  stereo_frame_t msg{};
   msg.header.frame_id = std::filesystem::path(ds.root).filename().string() + "/" + f.name;
   // Raw views (raw_calib.yaml) go out as they are, with the rig's calibration: the
   // stereo_matcher rectifies them on ingest.
