@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "percentile.hpp"
 
 namespace nerv::stereo {
 
@@ -29,11 +32,7 @@ MotionTracks trackMotion(const cv::Mat& previous_left, const cv::Mat& left, cons
 }
 
 float stepAtPoints(double k, std::vector<double> magnitudes) {
-  if (magnitudes.empty()) return 0;
-  const size_t p90 = std::min(magnitudes.size() - 1,
-                              static_cast<size_t>(0.9 * static_cast<double>(magnitudes.size() - 1) + 0.5));
-  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<long>(p90), magnitudes.end());
-  return static_cast<float>(std::abs(k) * magnitudes[p90]);
+  return static_cast<float>(std::abs(k) * percentile(std::move(magnitudes), 0.9));
 }
 
 }  // namespace nerv::stereo

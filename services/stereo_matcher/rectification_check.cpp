@@ -1,5 +1,6 @@
 #include "rectification_check.hpp"
 
+#include "percentile.hpp"
 #include "textured_points.hpp"
 
 #include <opencv2/imgproc.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 namespace nerv::stereo {
@@ -86,11 +88,9 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
   }
   residuals();
   for (float& r : res) r = std::abs(r);
-  std::vector<float> model(dy.size());
+  std::vector<double> model(dy.size());
   for (size_t i = 0; i < dy.size(); ++i) model[i] = static_cast<float>(std::abs(a + b * u[i] + c * v[i]));
-  const size_t p90 = std::min(model.size() - 1, static_cast<size_t>(0.9 * static_cast<double>(model.size() - 1) + 0.5));
-  std::nth_element(model.begin(), model.begin() + static_cast<long>(p90), model.end());
-  out.worst_px = model[p90];
+  out.worst_px = static_cast<float>(percentile(std::move(model), 0.9));
   out.offset_px = static_cast<float>(a);
   out.slope_x = static_cast<float>(b);
   out.slope_y = static_cast<float>(c);

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <vector>
 
+#include "percentile.hpp"
+
 namespace nerv::stereo {
 
 template <int N>
@@ -36,8 +38,7 @@ bool huberFit(const std::vector<FitRow<N>>& x, const std::vector<double>& y, Fit
       res[i] = y[i] - m;
       abs_res[i] = std::abs(res[i]);
     }
-    std::nth_element(abs_res.begin(), abs_res.begin() + static_cast<long>(abs_res.size() / 2), abs_res.end());
-    const double scale = std::max(1e-3, 1.4826 * abs_res[abs_res.size() / 2]);
+    const double scale = std::max(1e-3, 1.4826 * percentile(abs_res, 0.5));
     ata = cv::Matx<double, N, N>::zeros();
     cv::Vec<double, N> atb = cv::Vec<double, N>::all(0);
     for (size_t i = 0; i < y.size(); ++i) {

@@ -8,6 +8,8 @@
 #include <deque>
 #include <vector>
 
+#include "percentile.hpp"
+
 namespace nerv::stereo {
 
 template <typename T>
@@ -43,10 +45,7 @@ class MedianVerdict {
   bool add(float v) { return std::isfinite(v) && values_.add(v); }
   int samples() const { return values_.size(); }
   float median() const {
-    std::vector<float> v(values_.items().begin(), values_.items().end());
-    if (v.empty()) return 0;
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-    return v[v.size() / 2];
+    return static_cast<float>(percentile(std::vector<double>(values_.items().begin(), values_.items().end()), 0.5));
   }
   float lowest() const { return samples() ? *std::min_element(values_.items().begin(), values_.items().end()) : 0; }
   float highest() const { return samples() ? *std::max_element(values_.items().begin(), values_.items().end()) : 0; }

@@ -1,5 +1,6 @@
 // Nearest-rank percentile of a sample (p in [0, 1]; 0 for an empty sample): the
-// figure the run summary, the latency breakdown and nerv_eval_detections print.
+// figure the run summary, the latency breakdown and nerv_eval_detections print, and the
+// stereo_matcher's rig checks use (p 0.5: the upper median).
 #pragma once
 
 #include <algorithm>
