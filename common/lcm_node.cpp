@@ -126,8 +126,16 @@ void Node::onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   } catch (const std::exception&) {
     return;
   }
-  if (h.service != options_.service || h.instance != options_.instance) return;
   if (h.host == host_ && h.pid == static_cast<int32_t>(getpid())) return;  // this process
+  if (auto it = peer_started_.find(h.service); it != peer_started_.end()) {
+    // At most kMaxPeersHeard remembered: a bus of restarting processes must not grow it for ever
+    // (forgetting one only calls its handlers once more).
+    constexpr size_t kMaxPeersHeard = 4096;
+    if (peers_heard_.size() >= kMaxPeersHeard) peers_heard_.clear();
+    if (peers_heard_.insert(h.service + " " + h.host + " " + std::to_string(h.pid)).second)
+      for (auto& handler : it->second) guarded([&] { handler(h.host, h.pid); });
+  }
+  if (h.service != options_.service || h.instance != options_.instance) return;
   if (!twins_.insert(h.host + " " + std::to_string(h.pid)).second) return;
   error("duplicate_instance", "another " + h.service + "/" + h.instance + " runs on host " + h.host +
                                   ", pid " + std::to_string(h.pid) +

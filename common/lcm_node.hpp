@@ -92,6 +92,12 @@ class Node {
 
   // Called every loop iteration (about every 50 ms) for timeouts.
   void onTick(std::function<void()> tick) { ticks_.push_back(std::move(tick)); }
+  // Called with the host and pid of each process of `service` (any instance) the first time its
+  // NERV_HEALTH is heard: a stage that just started or restarted announces itself before its
+  // first output (its first report goes out at its first poll), so a partner can expect it again.
+  void onPeerStarted(const std::string& service, std::function<void(const std::string& host, int pid)> handler) {
+    peer_started_[service].push_back(std::move(handler));
+  }
 
   // Handles messages for up to timeout_ms, runs the ticks, publishes health when due.
   void poll(int timeout_ms);
@@ -121,6 +127,8 @@ class Node {
   // processed and published twice. One error per such process.
   void onHealth(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   std::set<std::string> twins_;  // "host pid" of each one seen
+  std::map<std::string, std::vector<std::function<void(const std::string&, int)>>> peer_started_;
+  std::set<std::string> peers_heard_;  // "service host pid" of each peer process heard
 
   NodeOptions options_;
   lcm::LCM lcm_;

@@ -57,6 +57,8 @@ class PartnerJoin {
     if (!presence_.arrived(seq)) return handlers_.late(b);
     join_.pushB(seq, b, now_us);
   }
+  // The partner's stage started: frames wait for it again (PartnerPresence::expect).
+  bool expectPartner() { return presence_.expect(); }
   // Expires what waited too long; once the partner is absent, everything waiting.
   void tick(int64_t now_us) {
     join_.expire(now_us);

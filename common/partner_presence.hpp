@@ -24,6 +24,15 @@ class PartnerPresence {
   // already (the message is late and must not start a new join).
   bool arrived(int64_t seq);
   bool absent() const { return missed_in_a_row_ >= absent_after_; }
+  // The partner's stage announced itself (it started or restarted): wait for its messages
+  // again from the next frame on, before the first of them arrives. Otherwise the frames in
+  // flight while it starts go on alone and their partners come late. Returns whether it was
+  // absent.
+  bool expect() {
+    const bool was_absent = absent();
+    missed_in_a_row_ = 0;
+    return was_absent;
+  }
 
   // A frame arrived: true when it must go on alone (the partner is absent; noted,
   // so that its partner, should it come after all, is known as late). Otherwise it

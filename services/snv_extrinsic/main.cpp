@@ -3,8 +3,10 @@
 // partner_join.hpp) the camera pose goes on from the disparity alone: EXTRINSICS
 // at once for every frame, without the stixel stage's ground model (on KITTI 0926 and
 // four synthetic sets within 4 mm, 0.03 deg of pitch and 0.21 deg of roll of the pose
-// with it), and no SURFACE_NORMALS, which only serve the hypotheses in STIXELS.
+// with it), and no SURFACE_NORMALS, which only serve the hypotheses in STIXELS. A stixel
+// stage that starts announces itself in NERV_HEALTH: frames wait for its STIXELS from then on.
 #include <chrono>
+#include <cstdio>
 
 #include "message_convert.hpp"
 #include "partner_join.hpp"
@@ -77,6 +79,13 @@ int serve(ServiceConfig& config) {
          node.error("join_timeout", "frame " + std::to_string(s.header.seq) + ": no DISPARITY with the same seq");
        }});
 
+  // A stixel stage that starts announces itself in NERV_HEALTH before its first STIXELS: from
+  // then on frames wait for them again, so no frame's normals are lost while it starts.
+  node.onPeerStarted("stixel", [&](const std::string& host, int pid) {
+    if (join.expectPartner())
+      std::fprintf(stderr, "snv_extrinsic: stixel started (host %s, pid %d): waiting for STIXELS again\n",
+                   host.c_str(), pid);
+  });
   node.subscribe<disparity_t>("DISPARITY", [&](const disparity_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkDisparity(msg, node.options().limits))

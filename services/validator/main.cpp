@@ -3,8 +3,10 @@
 // hypothesis marked "unvalidated", so no frame disappears downstream. While
 // snv_extrinsic is down (two frames expired without normals and none came since),
 // frames are published at once instead of after join_timeout_ms each
-// (partner_join.hpp), until normals come again.
+// (partner_join.hpp), until normals come again or snv_extrinsic announces itself in
+// NERV_HEALTH (it started: frames wait for its normals from then on).
 #include <chrono>
+#include <cstdio>
 
 #include "message_convert.hpp"
 #include "partner_join.hpp"
@@ -73,6 +75,13 @@ int serve(ServiceConfig& config) {
          node.error("missing_stixels", "frame " + std::to_string(n.header.seq) + ": SURFACE_NORMALS without STIXELS");
        }});
 
+  // A snv_extrinsic that starts announces itself in NERV_HEALTH before its first normals: from
+  // then on frames wait for them again, so none goes out unvalidated while it starts.
+  node.onPeerStarted("snv_extrinsic", [&](const std::string& host, int pid) {
+    if (join.expectPartner())
+      std::fprintf(stderr, "validator: snv_extrinsic started (host %s, pid %d): waiting for SURFACE_NORMALS again\n",
+                   host.c_str(), pid);
+  });
   node.subscribe<stixels_t>("STIXELS", [&](const stixels_t& msg) {
     if (!node.ownsFrame(msg.header.seq)) return;
     if (Problem p = checkStixels(msg, node.options().limits))

@@ -2,7 +2,7 @@
 # The stixel stage down: there are no hypotheses, so no DETECTIONS, but the camera pose goes
 # on. Once two frames in a row went without STIXELS, snv_extrinsic publishes EXTRINSICS for
 # every frame at once from the disparity alone (and no SURFACE_NORMALS, which only serve
-# hypotheses); when the stixel stage is back, DETECTIONS come again.
+# hypotheses); when the stixel stage is back, DETECTIONS come again, every one validated.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
@@ -35,6 +35,13 @@ dets=$(grep '"channel":"DETECTIONS"' "$tmp/all.jsonl" | wc -l)
 if grep -q "join_timeout: frame [0-9]*: no DISPARITY" "$tmp/up.log"; then
   fail "STIXELS taken for frames without DISPARITY: $(grep 'no DISPARITY' "$tmp/up.log" | head -3)"
 fi
-pass "stixel stage back: 10 of 10 frames detected"
+# The stixel stage announces itself in NERV_HEALTH before its first STIXELS, and from then on
+# snv_extrinsic waits for them: every frame's normals come, so every frame is validated.
+# (A frame validated without normals has no hypothesis labelled object, ground or error.)
+alone=$(grep '"channel":"DETECTIONS"' "$tmp/all.jsonl" | { grep -vcE '"label":"(object|ground|error)"' || true; })
+((alone == 0)) || fail "$alone DETECTIONS after the stixel stage came back without normals (all unvalidated)"
+back_normals=$(grep -c '"channel":"SURFACE_NORMALS"' "$tmp/all.jsonl")
+((back_normals == 10)) || fail "$back_normals SURFACE_NORMALS after the stixel stage came back, expected 10"
+pass "stixel stage back: 10 of 10 frames detected, each with its normals and validated"
 no_survivors || fail "processes survived"
 echo "2 passed, 0 failed"

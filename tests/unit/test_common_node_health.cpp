@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "lcm_node.hpp"
 #include "nerv/health_t.hpp"
@@ -70,4 +72,31 @@ TEST(commonNodeHealth, GaugesCarryTheirLatestValue) {
   EXPECT_EQ(h.gauge_names[1], "view_delay_ms");
   EXPECT_DOUBLE_EQ(h.gauge_values[1], -0.5);
   EXPECT_EQ(reportOnce(node).num_gauges, 2) << "a gauge stays in every report";
+}
+
+// A stage that starts announces itself through its first NERV_HEALTH: the validator and
+// snv_extrinsic wait for its messages again from then on (partner_join.hpp).
+TEST(commonNodeHealth, APeerProcessIsAnnouncedOnceWhenFirstHeard) {
+  Node node(memq());
+  std::vector<std::string> started;
+  node.onPeerStarted("snv_extrinsic", [&](const std::string& host, int pid) {
+    started.push_back(host + " " + std::to_string(pid));
+  });
+  auto announce = [&](const std::string& service, const std::string& instance, int pid) {
+    health_t h{};
+    h.service = service;
+    h.instance = instance;
+    h.host = "car-pc-2";
+    h.pid = pid;
+    node.publish("NERV_HEALTH", h);
+    for (int i = 0; i < 3; ++i) node.poll(20);
+  };
+  announce("snv_extrinsic", "0", 4711);
+  announce("snv_extrinsic", "0", 4711);  // its next report: the same process
+  announce("stixel", "0", 4712);         // another service
+  announce("snv_extrinsic", "1", 4713);  // a second shard
+  announce("snv_extrinsic", "0", 5000);  // the first one restarted
+  node.reportHealth();                   // this process ("test") is no peer of itself
+  for (int i = 0; i < 3; ++i) node.poll(20);
+  EXPECT_EQ(started, std::vector<std::string>({"car-pc-2 4711", "car-pc-2 4713", "car-pc-2 5000"}));
 }

@@ -136,3 +136,40 @@ TEST(commonPartnerJoin, RoutesEveryFrameOnceAndStopsWaitingWhileThePartnerIsAbse
   EXPECT_EQ(log, std::vector<std::string>({"matched 1", "waited 2", "waited 3", "flushed 4", "at once 5", "late 4",
                                            "matched 6", "orphan 7"}));
 }
+
+TEST(commonPartnerPresence, AStageThatStartsIsExpectedBeforeItsFirstMessage) {
+  PartnerPresence p(2);
+  EXPECT_FALSE(p.expect()) << "present already: nothing changes";
+  p.missed();
+  p.missed();
+  ASSERT_TRUE(p.goesAlone(4));
+  EXPECT_TRUE(p.expect()) << "it was absent";
+  EXPECT_FALSE(p.absent());
+  EXPECT_FALSE(p.goesAlone(5)) << "the next frame waits for the stage that started";
+  EXPECT_TRUE(p.arrived(5));
+  EXPECT_FALSE(p.arrived(4)) << "what went alone before it started stays late";
+}
+
+// The validator while snv_extrinsic restarts: without expectPartner, the frames in flight
+// while it starts went on alone and their normals came late (2 frames unvalidated).
+TEST(commonPartnerJoin, FramesAfterThePartnerStartedWaitForIt) {
+  std::vector<std::string> log;
+  PartnerJoin<Msg, Msg> join(
+      8, 1000, 2,
+      {[&](const Msg& a, const Msg&) { log.push_back("matched " + std::to_string(a.header.seq)); },
+       [&](const Msg& a, Alone why) {
+         log.push_back(std::string(why == Alone::NotWaiting ? "at once " : "alone ") + std::to_string(a.header.seq));
+       },
+       [&](const Msg& b) { log.push_back("late " + std::to_string(b.header.seq)); },
+       [&](const Msg& b) { log.push_back("orphan " + std::to_string(b.header.seq)); }});
+  join.pushA(1, msg(1), 0);
+  join.pushA(2, msg(2), 0);
+  join.tick(1500);             // both waited in vain: the partner is absent
+  join.pushA(3, msg(3), 1600);  // at once
+  EXPECT_TRUE(join.expectPartner());  // its stage announced itself
+  join.pushA(4, msg(4), 1700);  // waits
+  join.pushB(4, msg(4), 1750);
+  join.pushA(5, msg(5), 1800);
+  join.pushB(5, msg(5), 1850);
+  EXPECT_EQ(log, std::vector<std::string>({"alone 1", "alone 2", "at once 3", "matched 4", "matched 5"}));
+}
