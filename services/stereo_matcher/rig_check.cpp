@@ -1,5 +1,6 @@
 #include "rig_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "blank_view.hpp"
@@ -46,9 +47,10 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   // Not while one view repeats: the two images are from different moments, and their rows
   // would differ by the vehicle's motion, not the rig's.
   const bool scheduled = checks_ < p_.first_checks || frames_ % p_.check_every == 0;
-  if (frozen_.framesStopped() > 0 || (!scheduled && recheck_left_ == 0)) return out;
-  const bool rechecking = recheck_left_ > 0;
-  if (rechecking) --recheck_left_;
+  if (frozen_.framesStopped() > 0 || (!scheduled && check_next_ == 0)) return out;
+  if (check_next_ > 0) --check_next_;
+  const bool row_burst = row_burst_left_ > 0;
+  if (row_burst) --row_burst_left_;
   ++checks_;
   const RowOffset m = measureRowOffset(left, right, disparity);
   out.push_back({RigFinding::Kind::Count, m.valid ? "row_checks" : "row_checks_unmeasured", ""});
@@ -74,14 +76,15 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   // A reading on the other side of the limit from the last verdict: check every frame, and let
   // the next verdict be of these checks alone rather than wait until they outnumber the old
   // ones in a window that spans 100 frames.
-  if (m.valid && verdict_ != Verdict::None && !rechecking &&
+  if (m.valid && verdict_ != Verdict::None && !row_burst &&
       (m.worst_px > p_.max_row_offset_px) != (verdict_ == Verdict::Misaligned)) {
     out.push_back({RigFinding::Kind::Log, "",
                    cv::format("rectification check: this frame's rows are up to %.2f px off against the last "
                               "verdict's %.2f px (limit %.2f): checking every frame for the next %d checks",
                               m.worst_px, verdict_worst_, p_.max_row_offset_px, kVerdictChecks)});
     rows_.restart();
-    recheck_left_ = kVerdictChecks - 1;
+    row_burst_left_ = kVerdictChecks - 1;
+    check_next_ = std::max(check_next_, kVerdictChecks - 1);
   }
   checkAgainstMotion(previous, right, disparity, timing, out);
   if (!rows_.add(m)) return out;
@@ -118,8 +121,11 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   const ShutterSync sync = measureShutterSync(tracks, left, right, timing.fx, timing.cx, timing.cy);
   if (sync.valid) {
     out.push_back({RigFinding::Kind::Count, "sync_checks", ""});
-    if (delays_.add(static_cast<float>(sync.offset * interval_ms))) {
+    const float delay = static_cast<float>(sync.offset * interval_ms);
+    watch(delay_watch_, delays_, delay, "shutter", "ms", out);
+    if (delays_.add(delay)) {
       unsynchronised_ = delays_.beyond();
+      delay_watch_.verdict(unsynchronised_, delays_.median());
       out.push_back({RigFinding::Kind::Gauge, "view_delay_ms", "", delays_.median()});
       if (unsynchronised_) {
         out.push_back({RigFinding::Kind::Error, "views_unsynchronised",
@@ -138,6 +144,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   const DisparityOffset offset = measureDisparityOffset(tracks, timing.fx, timing.cx, timing.cy);
   if (!offset.valid) return;
   out.push_back({RigFinding::Kind::Count, "offset_checks", ""});
+  watch(offset_watch_, offsets_, offset.offset_px, "disparity offset", "px", out);
   if (!offsets_.add(offset.offset_px)) return;
   const float e = offsets_.median();
   out.push_back({RigFinding::Kind::Gauge, "disparity_offset_px", "", e});
@@ -146,6 +153,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   // (urban seed 11 10 ms early: -1.2 px; KITTI 0926 a row down: -0.57 px): no verdict on the
   // offset then. The row verdict comes first: its checks start a frame before these.
   if (unsynchronised_ || verdict_ == Verdict::Misaligned) return;
+  offset_watch_.verdict(offsets_.beyond(), e);
   if (offsets_.beyond()) {
     // A disparity e too large reads a point at Z as f B / (f B / Z + e): nearer.
     const double fb = timing.fx * timing.baseline_m, d40 = fb / 40.0;
@@ -166,6 +174,26 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
     out.push_back({RigFinding::Kind::Log, "", "disparity offset check: " + describeDisparityOffset(offsets_) +
                                                   ": within the limit"});
     offset_said_ = e;
+  }
+}
+
+void RigCheck::watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,
+                     std::vector<RigFinding>& out) {
+  switch (watch.reading(window.beyond(reading), reading)) {
+    case ChangeWatch::Step::Nothing:
+      return;
+    case ChangeWatch::Step::Confirm:
+      check_next_ = std::max(check_next_, 1);
+      return;
+    case ChangeWatch::Step::Restart:
+      out.push_back({RigFinding::Kind::Log, "",
+                     cv::format("%s check: this frame reads %.2f %s and the check before %.2f %s, against the last "
+                                "verdict's %.2f %s (limit %.2f): checking every frame for the next %d checks",
+                                what, reading, unit, watch.suspectValue(), unit, watch.verdictValue(), unit,
+                                window.limit(), kVerdictChecks)});
+      window.restart();
+      check_next_ = std::max(check_next_, kVerdictChecks - 1);
+      return;
   }
 }
 

@@ -8,7 +8,9 @@
 // needed to turn. On the same frames, while driving, the vehicle's forward step from the
 // frame before is the reference for two more: whether the two views were taken at the same
 // moment (shutter_sync.hpp) and whether every disparity is off by the same amount
-// (disparity_offset.hpp). The service reports what comes
+// (disparity_offset.hpp); two readings in a row against the last verdict of either make the
+// checks run on every frame until a verdict of those readings alone (change_watch.hpp), 11-20
+// frames after a trigger lost or a camera turned mid-drive. The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -17,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "change_watch.hpp"
 #include "disparity_offset.hpp"
 #include "frozen_view.hpp"
 #include "rectification_check.hpp"
@@ -64,6 +67,10 @@ class RigCheck {
  private:
   void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
                           std::vector<RigFinding>& out);
+  // A motion reading against its last verdict: the next frame checked too, or the window forgotten
+  // and every frame checked until the next verdict (change_watch.hpp).
+  void watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,
+             std::vector<RigFinding>& out);
 
   RigCheckParams p_;
   FrozenViewCheck frozen_;
@@ -74,13 +81,15 @@ class RigCheck {
   float worst_said_ = -1.0f;
   enum class Verdict { None, Aligned, Misaligned } verdict_ = Verdict::None;
   float verdict_worst_ = 0;  // the last verdict's median of the worst offsets [px]
-  int recheck_left_ = 0;     // frames still checked, each, after a reading against the verdict
+  int check_next_ = 0;       // frames still checked, each: after a reading against a verdict
+  int row_burst_left_ = 0;   // row checks still to come of a burst after a row reading against the verdict
   // The shutter check compares with the previous matched left view: two buffers, alternated,
   // so that keeping one costs a copy and no allocation.
   cv::Mat lefts_[2];
   int64_t utimes_[2] = {0, 0};
   int newest_ = -1;
   MedianVerdict delays_, offsets_;
+  ChangeWatch delay_watch_, offset_watch_;
   bool unsynchronised_ = false;
   float delay_said_ = 1e9f;   // the delay of the last "synchronised" line [ms]
   float offset_said_ = 1e9f;  // the offset of the last "consistent" line [px]

@@ -27,21 +27,24 @@ inline cv::Mat gray(const cv::Mat& bgr) {
   return g;
 }
 
-// Frames k - 1 and k of the urban scene (ego 8 m/s, 10 frames a second), frame k's right view
-// taken delay_ms after its left and moved shift_px to the left (every disparity shift_px
-// larger, as a right camera turned about its vertical axis gives), then matched by nerv_sgm.
-inline const Pair& renderedPair(int k, double delay_ms, double shift_px = 0) {
+inline synth::SceneSequence& urbanSequence() {
+  static synth::SceneSequence seq(
+      synth::loadScene(synth::resolveScenePath("urban", std::string(NERV_SOURCE_DIR) + "/config/scenes")));
+  return seq;
+}
+
+// Frame k of the urban scene (ego 8 m/s, 10 frames a second), its right view taken delay_ms
+// after its left and moved shift_px to the left (every disparity shift_px larger, as a right
+// camera turned about its vertical axis gives), then matched by nerv_sgm; no previous_left.
+inline const Pair& renderedFrame(int k, double delay_ms, double shift_px = 0) {
   static std::map<std::tuple<int, double, double>, Pair> cache;
   auto it = cache.find({k, delay_ms, shift_px});
   if (it != cache.end()) return it->second;
-  synth::SceneSpec spec =
-      synth::loadScene(synth::resolveScenePath("urban", std::string(NERV_SOURCE_DIR) + "/config/scenes"));
-  synth::SceneSequence seq(spec);
+  synth::SceneSequence& seq = urbanSequence();
   synth::RenderOptions options;
-  Pair p;
-  p.previous_left = gray(seq.render(k - 1, options).images.left);
   options.right_delay_s = delay_ms / 1000.0;
   const synth::SynthFrame f = seq.render(k, options);
+  Pair p;
   p.left = gray(f.images.left);
   p.right = gray(f.images.right);
   if (shift_px != 0) {
@@ -52,6 +55,16 @@ inline const Pair& renderedPair(int k, double delay_ms, double shift_px = 0) {
   cv::Mat confidence;
   matcher->compute(p.left, p.right, p.disparity, confidence);
   p.fx = seq.camera().fx, p.cx = seq.camera().cx, p.cy = seq.camera().cy, p.baseline_m = seq.camera().baseline_m;
+  return cache.emplace(std::make_tuple(k, delay_ms, shift_px), p).first->second;
+}
+
+// Frames k - 1 and k: frame k as renderedFrame gives it, with frame k - 1's left view.
+inline const Pair& renderedPair(int k, double delay_ms, double shift_px = 0) {
+  static std::map<std::tuple<int, double, double>, Pair> cache;
+  auto it = cache.find({k, delay_ms, shift_px});
+  if (it != cache.end()) return it->second;
+  Pair p = renderedFrame(k, delay_ms, shift_px);
+  p.previous_left = gray(urbanSequence().render(k - 1, synth::RenderOptions{}).images.left);
   return cache.emplace(std::make_tuple(k, delay_ms, shift_px), p).first->second;
 }
 
