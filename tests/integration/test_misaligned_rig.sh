@@ -18,6 +18,8 @@
 #    "aligned", the next check reads the rows off and the checks run on every frame, so
 #    row_misaligned comes 9 frames after that check, not 90 (a window of every-tenth-frame
 #    checks outvoted);
+#  - turned mid-drive (20 frames as recorded, then 25 a column over): disparity_offset comes
+#    about 10 frames after the first reading of it, not 90 (change_watch.hpp);
 #  - swapped (crossed cables): the error views_swapped, not a row misalignment;
 #  - the right camera stopped (its image repeated): the error view_frozen;
 #  - the right lens fogged (its view blurred to nothing): the error view_blank;
@@ -122,6 +124,33 @@ d=$(( $(seq_of "$line") - $(seq_of "$suspect") ))
 near "$(sed -E 's/.*up to ([0-9.]+) px off.*/\1/' <<<"$line")" 1 0.15 || fail "knocked: '$line'"
 pass "knocked mid-drive: re-checked at frame $(seq_of "$suspect"), row_misaligned at frame $(seq_of "$line")"
 
+# Turned mid-drive: frames 0-19 as recorded, 20-44 with the right views a column over (the set
+# above). The first offset verdict, "within the limit", comes at frame 19; the scheduled check
+# of frame 29 reads the offset (suspect), frame 30 again, and every frame is checked until the
+# verdict of those readings: frame 39-41 (the sequence's loop back from its last frame to its
+# first gives one pair without a reading). Before the change watch: frame 119 at the earliest.
+mkdir -p "$tmp/data_turning/left" "$tmp/data_turning/right"
+cp "$tmp/data_cols/calib.yaml" "$tmp/data_turning/"
+for i in $(seq 0 44); do
+  n=${names[$((i % ${#names[@]}))]} from="$tmp/data_cols/right"
+  (( i < 20 )) && from="$tmp/data_asis/right"
+  cp "$tmp/data_asis/left/$n" "$tmp/data_turning/left/$(printf %06d "$i").png"
+  cp "$from/$n" "$tmp/data_turning/right/$(printf %06d "$i").png"
+done
+"$NERV_ROOT/tools/nerv" run --data "$tmp/data_turning" --rate 10 --out "$tmp/turning" >"$tmp/turning.txt" 2>&1 \
+  || fail "turning: nerv run exited with $?: $(tail -n 3 "$tmp/turning.txt")"
+log="$tmp/turning/logs/services.log"
+first=$(grep "disparity offset check" "$log" | head -n 1)
+[[ "$first" == *": within the limit" ]] || fail "turning: the first offset verdict is not 'within the limit': '$first'"
+suspect=$(grep "disparity offset check: this frame reads" "$log" | head -n 1)
+line=$(grep "disparity_offset" "$log" | head -n 1)
+[[ -n "$suspect" && -n "$line" ]] || fail "turned mid-drive: no burst or no error: $(grep -i 'offset' "$log" | head -n 5)"
+d=$(( $(seq_of "$line") - $(seq_of "$suspect") ))
+(( $(seq_of "$suspect") >= 20 && d >= 9 && d <= 12 )) \
+  || fail "turning: burst at '$suspect', error at '$line' (turned at frame 20)"
+grep -q "row_misaligned\|views_unsynchronised" "$log" && fail "turning: also reported as rows or shutters"
+pass "turned mid-drive at frame 20: burst from frame $(seq_of "$suspect"), disparity_offset at frame $(seq_of "$line")"
+
 # A fault that leaves the rows unmeasurable or repeats a view, named by its own error:
 # named_fault NAME "nerv_misalign options" ERROR "text the error must hold" ERROR_IT_IS_NOT
 named_fault() {
@@ -153,4 +182,4 @@ grep -q "^rectification check .*: aligned$" "$tmp/eval_as.txt" || fail "eval as 
 grep -q "^rectification check .*: MISALIGNED beyond 0.40 px$" "$tmp/eval_moved.txt" \
   || fail "eval moved by a row: $(tail -n 1 "$tmp/eval_moved.txt")"
 pass "nerv_eval_disparity: $(tail -n 1 "$tmp/eval_moved.txt" | cut -c1-120)..."
-echo "10 passed, 0 failed"
+echo "11 passed, 0 failed"
