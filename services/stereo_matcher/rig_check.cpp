@@ -82,6 +82,7 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                    cv::format("rectification check: this frame's rows are up to %.2f px off against the last "
                               "verdict's %.2f px (limit %.2f): checking every frame for the next %d checks",
                               m.worst_px, verdict_worst_, p_.max_row_offset_px, kVerdictChecks)});
+    out.push_back({RigFinding::Kind::Count, "row_rechecks", ""});
     rows_.restart();
     row_burst_left_ = kVerdictChecks - 1;
     check_next_ = std::max(check_next_, kVerdictChecks - 1);
@@ -122,7 +123,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   if (sync.valid) {
     out.push_back({RigFinding::Kind::Count, "sync_checks", ""});
     const float delay = static_cast<float>(sync.offset * interval_ms);
-    watch(delay_watch_, delays_, delay, "shutter", "ms", out);
+    watch(delay_watch_, delays_, delay, "shutter", "ms", "sync_rechecks", out);
     if (delays_.add(delay)) {
       unsynchronised_ = delays_.beyond();
       delay_watch_.verdict(unsynchronised_, delays_.median());
@@ -144,7 +145,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   const DisparityOffset offset = measureDisparityOffset(tracks, timing.fx, timing.cx, timing.cy);
   if (!offset.valid) return;
   out.push_back({RigFinding::Kind::Count, "offset_checks", ""});
-  watch(offset_watch_, offsets_, offset.offset_px, "disparity offset", "px", out);
+  watch(offset_watch_, offsets_, offset.offset_px, "disparity offset", "px", "offset_rechecks", out);
   if (!offsets_.add(offset.offset_px)) return;
   const float e = offsets_.median();
   out.push_back({RigFinding::Kind::Gauge, "disparity_offset_px", "", e});
@@ -178,7 +179,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
 }
 
 void RigCheck::watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,
-                     std::vector<RigFinding>& out) {
+                     const char* counter, std::vector<RigFinding>& out) {
   switch (watch.reading(window.beyond(reading), reading)) {
     case ChangeWatch::Step::Nothing:
       return;
@@ -191,6 +192,7 @@ void RigCheck::watch(ChangeWatch& watch, MedianVerdict& window, float reading, c
                                 "verdict's %.2f %s (limit %.2f): checking every frame for the next %d checks",
                                 what, reading, unit, watch.suspectValue(), unit, watch.verdictValue(), unit,
                                 window.limit(), kVerdictChecks)});
+      out.push_back({RigFinding::Kind::Count, counter, ""});
       window.restart();
       check_next_ = std::max(check_next_, kVerdictChecks - 1);
       return;

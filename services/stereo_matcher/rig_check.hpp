@@ -68,9 +68,9 @@ class RigCheck {
   void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
                           std::vector<RigFinding>& out);
   // A motion reading against its last verdict: the next frame checked too, or the window forgotten
-  // and every frame checked until the next verdict (change_watch.hpp).
+  // and every frame checked until the next verdict (change_watch.hpp), counted as `counter`.
   void watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,
-             std::vector<RigFinding>& out);
+             const char* counter, std::vector<RigFinding>& out);
 
   RigCheckParams p_;
   FrozenViewCheck frozen_;

@@ -29,13 +29,17 @@ int count(const std::vector<RigFinding>& found, const std::string& name) {
 struct Drive {
   RigCheck rig;
   std::string said;  // every line, "frame name: message"
-  explicit Drive(const RigCheckParams& params) : rig(params) {}
+  std::string rechecks_counter;
+  int rechecks = 0;  // how often rechecks_counter was counted
+  Drive(const RigCheckParams& params, const std::string& counter) : rig(params), rechecks_counter(counter) {}
   std::vector<RigFinding> frame(int k, int rendered, double delay_ms, double shift_px) {
     const Pair& p = renderedFrame(rendered, delay_ms, shift_px);
     const std::vector<RigFinding> found =
         rig.afterMatching(p.left, p.right, p.disparity, {100000LL * k, p.fx, p.cx, p.cy, p.baseline_m});
-    for (const RigFinding& f : found)
+    for (const RigFinding& f : found) {
       if (!f.message.empty()) said += std::to_string(k) + " " + f.name + ": " + f.message + "\n";
+      if (f.kind == RigFinding::Kind::Count && f.name == rechecks_counter) ++rechecks;
+    }
     return found;
   }
 };
@@ -54,6 +58,7 @@ int driveWithAChange(Drive& d, double delay_ms, double shift_px, const std::stri
   EXPECT_EQ(count(d.frame(21, 21, delay_ms, shift_px), checks), 1) << "frame 21 checked after the suspect one";
   EXPECT_NE(d.said.find("21 : " + what + " check: this frame reads "), std::string::npos) << d.said;
   EXPECT_NE(d.said.find("checking every frame for the next 10 checks"), std::string::npos) << d.said;
+  EXPECT_EQ(d.rechecks, 1) << "counted once, for NERV_HEALTH";
   for (int k = 22; k <= 30; ++k) {
     const std::vector<RigFinding> found = d.frame(k, k, delay_ms, shift_px);
     EXPECT_EQ(count(found, checks), 1) << k;
@@ -65,7 +70,7 @@ int driveWithAChange(Drive& d, double delay_ms, double shift_px, const std::stri
 TEST(stereoRigChange, ViewsComingApartMidDriveAreSaidTwentyFramesLater) {
   RigCheckParams params;
   params.first_checks = 11;  // ten delays by frame 11 (frame 1 has none before it)
-  Drive d(params);
+  Drive d(params, "sync_rechecks");
   // 5 ms: the rows move by 0.15 px, which the row check does not take for a change.
   EXPECT_EQ(driveWithAChange(d, 5, 0, "sync_checks", "views_unsynchronised", "shutter"), 30) << d.said;
   EXPECT_NE(d.said.find("the right view is taken 5."), std::string::npos) << d.said;
@@ -79,7 +84,7 @@ TEST(stereoRigChange, ViewsComingApartMidDriveAreSaidTwentyFramesLater) {
 TEST(stereoRigChange, ACameraTurnedMidDriveIsSaidTwentyFramesLater) {
   RigCheckParams params;
   params.first_checks = 11;
-  Drive d(params);
+  Drive d(params, "offset_rechecks");
   EXPECT_EQ(driveWithAChange(d, 0, 1.0, "offset_checks", "disparity_offset", "disparity offset"), 30) << d.said;
   EXPECT_NE(d.said.find("objects read nearer"), std::string::npos) << d.said;
   EXPECT_EQ(d.said.find("views_unsynchronised"), std::string::npos) << d.said;
@@ -91,7 +96,7 @@ TEST(stereoRigChange, ACameraTurnedMidDriveIsSaidTwentyFramesLater) {
 TEST(stereoRigChange, ARigInOrderIsCheckedOnScheduleOnly) {
   RigCheckParams params;
   params.first_checks = 11;
-  Drive d(params);
+  Drive d(params, "offset_rechecks");
   int checks = 0;
   for (int k = 1; k <= 60; ++k)
     checks += count(d.frame(k, k <= 11 || k % 10 == 9 || k % 10 == 0 ? k : 11, 0, 0), "row_checks");
