@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "build_version.hpp"
+#include "health_compat.hpp"
 #include "nerv/health_t.hpp"
 
 namespace nerv {
@@ -55,7 +56,7 @@ Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(
     throw std::runtime_error("shard index " + std::to_string(options_.shard_index) + " of " +
                              std::to_string(options_.shard_count) + " is invalid");
   host_ = hostName();
-  lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(10);
+  lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(50);
   std::fprintf(stderr, "%s: nerv %s\n", options_.service.c_str(), buildVersion());
   struct sigaction sa {};
   sa.sa_handler = onSignal;
@@ -120,12 +121,9 @@ void Node::noteSeq(const std::string& channel, int64_t seq) {
 }
 
 void Node::onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  health_t h;
-  try {  // a corrupt array length makes the generated decoder throw
-    if (h.decode(rbuf->data, 0, rbuf->data_size) < 0) return;
-  } catch (const std::exception&) {
-    return;
-  }
+  health_t h;  // any layout: a process of an older build is still heard (health_compat.hpp)
+  if (!decodeHealth(rbuf->data, static_cast<int>(rbuf->data_size), h)) return;
+  for (auto& handler : health_handlers_) guarded([&] { handler(h); });
   if (h.host == host_ && h.pid == static_cast<int32_t>(getpid())) return;  // this process
   if (auto it = peer_started_.find(h.service); it != peer_started_.end()) {
     // At most kMaxPeersHeard remembered: a bus of restarting processes must not grow it for ever

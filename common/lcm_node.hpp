@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "message_check.hpp"
+#include "nerv/health_t.hpp"
 #include "seq_gap_tracker.hpp"
 
 namespace nerv {
@@ -98,6 +99,10 @@ class Node {
   void onPeerStarted(const std::string& service, std::function<void(const std::string& host, int pid)> handler) {
     peer_started_[service].push_back(std::move(handler));
   }
+  // Called with every NERV_HEALTH report on the bus, this process's own included, in any layout
+  // nerv has published (health_compat.hpp: older builds' reports have the newer fields empty).
+  // Subscribing to NERV_HEALTH as a health_t would count older builds' reports as decode_failed.
+  void onHealthReport(std::function<void(const health_t&)> handler) { health_handlers_.push_back(std::move(handler)); }
 
   // Handles messages for up to timeout_ms, runs the ticks, publishes health when due.
   void poll(int timeout_ms);
@@ -129,6 +134,7 @@ class Node {
   std::set<std::string> twins_;  // "host pid" of each one seen
   std::map<std::string, std::vector<std::function<void(const std::string&, int)>>> peer_started_;
   std::set<std::string> peers_heard_;  // "service host pid" of each peer process heard
+  std::vector<std::function<void(const health_t&)>> health_handlers_;
 
   NodeOptions options_;
   lcm::LCM lcm_;

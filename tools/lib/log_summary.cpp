@@ -15,6 +15,7 @@
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
+#include "health_compat.hpp"
 #include "nerv/health_t.hpp"
 #include "nerv/stereo_frame_t.hpp"
 #include "nerv/stixels_t.hpp"
@@ -106,7 +107,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       latencies.push_back(r.latency_ms);
       last_detection_utime = std::max(last_detection_utime, e->timestamp);
       ++detections_events;
-    } else if (decodeEvent(*e, health)) {
+    } else if (decodeHealth(e->data, e->datalen, health)) {  // any layout: older logs too
       last_health[health.service + "/" + health.instance] = health;
     }
   }

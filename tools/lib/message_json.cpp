@@ -5,7 +5,10 @@
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
+#include "health_compat.hpp"
 #include "nerv/health_t.hpp"
+#include "nerv/health_v1_t.hpp"
+#include "nerv/health_v2_t.hpp"
 #include "nerv/stereo_frame_t.hpp"
 #include "nerv/stixels_t.hpp"
 #include "nerv/surface_normals_t.hpp"
@@ -309,6 +312,18 @@ bool tryType(const void* data, int size, JsonWriter& json, std::string& name) {
   return true;
 }
 
+// NERV_HEALTH of an older layout (logs recorded before health_t gained its build stamp or its
+// gauges): written as a health_t, the fields it lacked empty, under its own type's name.
+bool tryOlderHealth(const void* data, int size, JsonWriter& json, std::string& name) {
+  const int64_t fp = fingerprint(data, size);
+  if (fp != health_v1_t::getHash() && fp != health_v2_t::getHash()) return false;
+  health_t m;
+  if (!decodeHealth(data, size, m)) return true;  // right type, broken payload
+  write(json, m);
+  name = std::string("nerv.") + (fp == health_v1_t::getHash() ? health_v1_t::getTypeName() : health_v2_t::getTypeName());
+  return true;
+}
+
 }  // namespace
 
 std::string writeMessageJson(const void* data, int size, JsonWriter& json) {
@@ -317,7 +332,8 @@ std::string writeMessageJson(const void* data, int size, JsonWriter& json) {
       tryType<stixels_t>(data, size, json, name) ||
       tryType<surface_normals_t>(data, size, json, name) ||
       tryType<extrinsics_t>(data, size, json, name) ||
-      tryType<detections_t>(data, size, json, name) || tryType<health_t>(data, size, json, name);
+      tryType<detections_t>(data, size, json, name) || tryType<health_t>(data, size, json, name) ||
+      tryOlderHealth(data, size, json, name);
   return name;
 }
 

@@ -126,10 +126,11 @@ int play(const Options& o) {
   std::set<int64_t> detected;
   // --wait-for names a service (any instance will do) or one instance ("stereo_matcher/shard1"):
   // with shards, every shard must be up, or the first frames of a late one are lost.
-  node.subscribe<health_t>("NERV_HEALTH", [&](const health_t& h) {
+  // Any layout: a service of an older build on another computer counts as up too.
+  node.onHealthReport([&](const health_t& h) {
     seen_services.insert(h.service);
     seen_services.insert(h.service + "/" + h.instance);
-  }, 50);
+  });
   node.subscribe<detections_t>("DETECTIONS", [&](const detections_t& d) {
     if (d.header.seq >= 0 && d.header.seq < static_cast<int64_t>(count)) detected.insert(d.header.seq);
   }, 50);

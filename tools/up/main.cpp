@@ -40,6 +40,7 @@
 #include "config.hpp"
 #include "pipeline_keys.hpp"
 #include "lcm_node.hpp"
+#include "health_compat.hpp"
 #include "nerv/health_t.hpp"
 #include "service_watchdog.hpp"
 
@@ -80,12 +81,8 @@ struct HealthBoard {
   std::string host;
   int64_t broken = 0;
   void onHealth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    health_t h;
-    try {  // a corrupt array length makes the generated decoder throw
-      if (h.decode(rbuf->data, 0, rbuf->data_size) < 0) return void(++broken);
-    } catch (const std::exception&) {
-      return void(++broken);
-    }
+    health_t h;  // any layout: a computer still on an older build is shown too (health_compat.hpp)
+    if (!decodeHealth(rbuf->data, static_cast<int>(rbuf->data_size), h)) return void(++broken);
     const std::string key = h.service + "/" + h.instance;
     last[key] = h;
     seen[key] = Clock::now();
