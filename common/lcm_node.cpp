@@ -41,6 +41,23 @@ int64_t nowUtime() {
       .count();
 }
 
+std::string undecodableMessage(const std::string& channel, const char* type, int64_t hash, const void* data,
+                               uint32_t size) {
+  if (size < 8) return "message on " + channel + " does not decode as " + type + ": " + std::to_string(size) + " bytes";
+  const auto* b = static_cast<const uint8_t*>(data);
+  uint64_t fp = 0;
+  for (int i = 0; i < 8; ++i) fp = (fp << 8) | b[i];  // LCM writes it big-endian
+  if (static_cast<int64_t>(fp) == hash)
+    return "message on " + channel + " does not decode as " + type + ": its payload is broken";
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "message on %s does not decode as %s: its layout (fingerprint %016llx) is not this build's "
+                "(%016llx): a process of another nerv build publishes it, or another program uses the channel "
+                "(nerv status lists each process's build)",
+                channel.c_str(), type, static_cast<unsigned long long>(fp), static_cast<unsigned long long>(hash));
+  return line;
+}
+
 std::string hostName() {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);

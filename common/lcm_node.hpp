@@ -41,6 +41,12 @@ struct NodeOptions {
 };
 
 int64_t nowUtime();
+// The line for a message on `channel` that does not decode as `type`: a fingerprint other than
+// the type's (`hash`) is another layout of it, from a process of another build (a computer of
+// the vehicle not yet updated) or another program on the channel, and is named as such;
+// otherwise the payload is broken.
+std::string undecodableMessage(const std::string& channel, const char* type, int64_t hash, const void* data,
+                               uint32_t size);
 // This computer's name, as every NERV_HEALTH report carries it.
 std::string hostName();
 
@@ -177,7 +183,7 @@ void Node::subscribe(const std::string& base_channel, std::function<void(const T
     } catch (const std::exception&) {
     }
     if (!decoded) {
-      error("decode_failed", "message on " + ch + " does not decode as " + T::getTypeName());
+      error("decode_failed", undecodableMessage(ch, T::getTypeName(), T::getHash(), rbuf->data, rbuf->data_size));
       return;
     }
     if constexpr (HasFrameHeader<T>::value) noteSeq(ch, msg.header.seq);

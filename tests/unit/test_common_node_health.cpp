@@ -8,6 +8,7 @@
 
 #include "lcm_node.hpp"
 #include "nerv/health_t.hpp"
+#include "nerv/health_v1_t.hpp"
 
 using namespace nerv;
 
@@ -26,6 +27,14 @@ int64_t counterOf(const health_t& h, const std::string& name) {
   for (int i = 0; i < h.num_counters; ++i)
     if (h.counter_names[i] == name) return h.counter_values[i];
   return 0;
+}
+
+// A report in the first layout of health_t (another fingerprint than this build's).
+health_v1_t health_v1_like() {
+  health_v1_t h{};
+  h.service = "stixel";
+  h.num_counters = 0;
+  return h;
 }
 
 NodeOptions memq() {
@@ -99,4 +108,26 @@ TEST(commonNodeHealth, APeerProcessIsAnnouncedOnceWhenFirstHeard) {
   node.reportHealth();                   // this process ("test") is no peer of itself
   for (int i = 0; i < 3; ++i) node.poll(20);
   EXPECT_EQ(started, std::vector<std::string>({"car-pc-2 4711", "car-pc-2 4713", "car-pc-2 5000"}));
+}
+
+// A message that does not decode is told apart: another layout of the type (a process of another
+// build on the bus) or a broken payload. Both are counted as decode_failed.
+TEST(commonNodeHealth, AnotherLayoutIsNamedAsAnotherBuild) {
+  const uint8_t other[12] = {0x12, 0x34, 0x56, 0x78, 0x9a, 0xbc, 0xde, 0xf0, 0, 0, 0, 0};
+  const std::string line = undecodableMessage("STIXELS", "stixels_t", 0x0102030405060708LL, other, sizeof other);
+  EXPECT_NE(line.find("message on STIXELS does not decode as stixels_t: its layout (fingerprint 123456789abcdef0) "
+                      "is not this build's (0102030405060708): a process of another nerv build publishes it"),
+            std::string::npos)
+      << line;
+  const uint8_t same[12] = {1, 2, 3, 4, 5, 6, 7, 8, 0xff, 0xff, 0xff, 0xff};
+  EXPECT_EQ(undecodableMessage("STIXELS", "stixels_t", 0x0102030405060708LL, same, sizeof same),
+            "message on STIXELS does not decode as stixels_t: its payload is broken");
+  EXPECT_EQ(undecodableMessage("STIXELS", "stixels_t", 1, same, 5), "message on STIXELS does not decode as stixels_t: 5 bytes");
+
+  Node node(memq());  // through a subscription: the counter and the report's last error
+  node.subscribe<health_t>("OTHER", [](const health_t&) {}, 4);
+  node.publish("OTHER", health_v1_like());
+  for (int i = 0; i < 3; ++i) node.poll(20);
+  EXPECT_EQ(node.counter("decode_failed"), 1);
+  EXPECT_NE(reportOnce(node).last_error.find("its layout (fingerprint"), std::string::npos);
 }
