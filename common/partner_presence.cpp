@@ -4,6 +4,7 @@ namespace nerv {
 
 bool PartnerPresence::arrived(int64_t seq) {
   missed_in_a_row_ = 0;
+  start_unanswered_ = false;
   return sent_alone_.erase(seq) == 0;
 }
 

@@ -26,12 +26,15 @@ class PartnerPresence {
   bool absent() const { return missed_in_a_row_ >= absent_after_; }
   // The partner's stage announced itself (it started or restarted): wait for its messages
   // again from the next frame on, before the first of them arrives. Otherwise the frames in
-  // flight while it starts go on alone and their partners come late. Returns whether it was
-  // absent.
+  // flight while it starts go on alone and their partners come late. Once only until one of
+  // its messages arrives: a stage that restarts again and again without output (a crash loop
+  // under a supervisor) would otherwise hold frames back at each restart. Returns whether the
+  // frames wait for it again (it was absent and no such start is still unanswered).
   bool expect() {
-    const bool was_absent = absent();
+    if (!absent() || start_unanswered_) return false;
     missed_in_a_row_ = 0;
-    return was_absent;
+    start_unanswered_ = true;
+    return true;
   }
 
   // A frame arrived: true when it must go on alone (the partner is absent; noted,
@@ -46,6 +49,7 @@ class PartnerPresence {
  private:
   int absent_after_;
   int missed_in_a_row_ = 0;
+  bool start_unanswered_ = false;  // expect() made frames wait, and no partner message came since
   std::set<int64_t> sent_alone_;  // the latest ones (kMemory), for late partners
   static constexpr size_t kMemory = 256;
 };

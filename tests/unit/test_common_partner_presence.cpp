@@ -150,6 +150,27 @@ TEST(commonPartnerPresence, AStageThatStartsIsExpectedBeforeItsFirstMessage) {
   EXPECT_FALSE(p.arrived(4)) << "what went alone before it started stays late";
 }
 
+// A stage in a crash loop announces itself at each restart and never answers: frames wait for
+// it after the first start only, not at every restart.
+TEST(commonPartnerPresence, AStageThatStartsAndNeverAnswersIsExpectedOnce) {
+  PartnerPresence p(2);
+  p.missed();
+  p.missed();
+  ASSERT_TRUE(p.absent());
+  EXPECT_TRUE(p.expect()) << "first start: wait for it";
+  EXPECT_FALSE(p.goesAlone(1));
+  p.missed();
+  p.missed();  // it crashed before its first message
+  ASSERT_TRUE(p.absent());
+  EXPECT_FALSE(p.expect()) << "started again without having answered: frames go on at once";
+  EXPECT_TRUE(p.absent());
+  EXPECT_TRUE(p.goesAlone(2));
+  EXPECT_TRUE(p.arrived(3)) << "it answers after all";
+  p.missed();
+  p.missed();
+  EXPECT_TRUE(p.expect()) << "having answered, its next start is waited for again";
+}
+
 // The validator while snv_extrinsic restarts: without expectPartner, the frames in flight
 // while it starts went on alone and their normals came late (2 frames unvalidated).
 TEST(commonPartnerJoin, FramesAfterThePartnerStartedWaitForIt) {
