@@ -1,6 +1,7 @@
-// Test helper: publishes malformed STEREO_FRAME / DISPARITY messages, then one
-// good frame, and checks over LCM that the stereo_matcher and stixel services
-// counted each rejection in NERV_HEALTH and still produce output afterwards.
+// Test helper: publishes malformed STEREO_FRAME / DISPARITY messages (and ones of another
+// layout, as a process of an older build sends), then one good frame, and checks over LCM that
+// the stereo_matcher and stixel services counted each rejection in NERV_HEALTH and still produce
+// output afterwards; and that an older build's NERV_HEALTH is read (a twin stixel/0 is named).
 // Exit 0 when every expectation holds; prints what it saw either way.
 #include <lcm/lcm-cpp.hpp>
 
@@ -16,6 +17,7 @@
 #include "message_convert.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/health_t.hpp"
+#include "nerv/health_v1_t.hpp"
 #include "nerv/stereo_frame_t.hpp"
 #include "nerv/stixels_t.hpp"
 
@@ -98,6 +100,28 @@ int main(int argc, char** argv) {
     lcm.publish("STEREO_FRAME", bytes.data(), bytes.size());
     settle();
   }
+  // 1c. a message of another layout on a data channel (as from a process of an older build):
+  // dropped and named as another build's layout
+  {
+    health_v1_t old{};
+    old.service = "stixel";
+    old.num_counters = 0;
+    lcm.publish("DISPARITY", &old);
+    settle();
+  }
+  // 1d. NERV_HEALTH in the first layout (a computer still on an older build) from a second
+  // stixel/0: the running stixel service must read it and name the duplicate
+  {
+    health_v1_t twin{};
+    twin.service = "stixel";
+    twin.instance = "0";
+    twin.host = "old-pc";
+    twin.pid = 4242;
+    twin.status = "ok";
+    twin.num_counters = 0;
+    lcm.publish("NERV_HEALTH", &twin);
+    settle();
+  }
   // 2. size field disagrees with the data
   stereo_frame_t f = frame(100);
   f.left.size += 7;
@@ -131,7 +155,8 @@ int main(int argc, char** argv) {
     auto c = [&](const char* svc, const char* name) { return l.counters[svc][name]; };
     return c("stereo_matcher", "decode_failed") >= 2 && c("stereo_matcher", "bad_size") >= 1 &&
            c("stereo_matcher", "size_mismatch") >= 1 && c("stereo_matcher", "bad_calibration") >= 1 &&
-           c("stixel", "decode_failed") >= 1 && c("stixel", "size_mismatch") >= 1 &&
+           c("stixel", "decode_failed") >= 2 && c("stixel", "size_mismatch") >= 1 &&
+           c("stixel", "duplicate_instance") >= 1 &&
            l.outputs["DISPARITY"] >= 1 && l.outputs["STIXELS"] >= 1;
   };
   test::handleUntil(lcm, std::chrono::seconds(10), expectations, 100);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Bad input gets a clear one-line error and loses nothing:
-#  - malformed messages are counted in NERV_HEALTH and the services keep running;
+#  - malformed messages are counted in NERV_HEALTH and the services keep running; a message of
+#    another layout (an older build's) is named as such, and an older build's NERV_HEALTH is read;
 #  - a missing data folder, a missing calibration or an unknown config key end
 #    the command with one line and a non-zero exit, with no process left.
 source "$(dirname "$0")/lib.sh"
@@ -14,8 +15,12 @@ start_child "$tmp/stixel.log" "$BIN/stixel" --lcm-url "$URL"
 "$BIN/nerv_test_inject" "$URL" || { cat "$tmp"/*.log; fail "rejections not counted"; }
 for pid in "${CHILDREN[@]}"; do kill -0 "$pid" || fail "a service died on bad input"; done
 grep -q "stereo_matcher: bad_size" "$tmp/stereo.log" || fail "no one-line error for bad_size: $(cat "$tmp/stereo.log")"
+grep -q "does not decode as disparity_t: its layout (fingerprint [0-9a-f]*) is not this build's" "$tmp/stixel.log" \
+  || fail "a DISPARITY of another layout not named as such: $(grep decode_failed "$tmp/stixel.log")"
+grep -q "another stixel/0 runs on host old-pc, pid 4242" "$tmp/stixel.log" \
+  || fail "an older build's NERV_HEALTH not read: $(grep -i duplicate "$tmp/stixel.log")"
 stop_children
-pass "malformed messages counted, services alive"
+pass "malformed messages counted, services alive; another build's layout named, its NERV_HEALTH read"
 
 # 2. unknown config key: one line naming it, exit 2
 printf 'stixel:\n  colum_width_px: 3\n' >"$tmp/bad.yaml"
