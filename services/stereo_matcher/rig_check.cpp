@@ -180,7 +180,7 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
 
 void RigCheck::watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,
                      const char* counter, std::vector<RigFinding>& out) {
-  switch (watch.reading(window.beyond(reading), reading)) {
+  switch (watch.reading(reading, window.limit())) {
     case ChangeWatch::Step::Nothing:
       return;
     case ChangeWatch::Step::Confirm:
