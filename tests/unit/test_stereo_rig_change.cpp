@@ -75,7 +75,7 @@ TEST(stereoRigChange, ViewsComingApartMidDriveAreSaidTwentyFramesLater) {
   EXPECT_EQ(driveWithAChange(d, 5, 0, "sync_checks", "views_unsynchronised", "shutter"), 30) << d.said;
   EXPECT_NE(d.said.find("the right view is taken 5."), std::string::npos) << d.said;
   // Back to every tenth frame once the bursts are over (the delay makes the offset read
-  // 0.6-0.7 px too, whose burst may start by frame 30 and end by 39).
+  // 0.6-0.7 px too, under the change watch's margin; a burst of it would end by frame 39).
   for (int k = 31; k <= 39; ++k) d.frame(k, 30, 5, 0);
   for (int k = 40; k <= 50; ++k)
     EXPECT_EQ(count(d.frame(k, 30, 5, 0), "row_checks"), k % 10 == 0 ? 1 : 0) << k;
