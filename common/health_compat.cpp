@@ -3,20 +3,13 @@
 #include <cstdint>
 #include <exception>
 
+#include "message_fingerprint.hpp"
 #include "nerv/health_v1_t.hpp"
 #include "nerv/health_v2_t.hpp"
 
 namespace nerv {
 
 namespace {
-
-int64_t fingerprintOf(const void* data, int size) {
-  if (!data || size < 8) return 0;
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v = (v << 8) | b[i];  // LCM writes it big-endian
-  return static_cast<int64_t>(v);
-}
 
 template <class T>
 bool decodeAs(const void* data, int size, T& msg) {
@@ -54,7 +47,7 @@ void copyCommon(const Old& m, health_t& out) {
 }  // namespace
 
 bool decodeHealth(const void* data, int size, health_t& out, HealthLayout* layout) {
-  const int64_t fp = fingerprintOf(data, size);
+  const int64_t fp = messageFingerprint(data, size);
   HealthLayout which = HealthLayout::Unknown;
   bool ok = false;
   if (fp == health_t::getHash()) {

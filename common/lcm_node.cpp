@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "build_version.hpp"
+#include "message_fingerprint.hpp"
 #include "health_compat.hpp"
 #include "nerv/health_t.hpp"
 
@@ -44,10 +45,8 @@ int64_t nowUtime() {
 std::string undecodableMessage(const std::string& channel, const char* type, int64_t hash, const void* data,
                                uint32_t size) {
   if (size < 8) return "message on " + channel + " does not decode as " + type + ": " + std::to_string(size) + " bytes";
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t fp = 0;
-  for (int i = 0; i < 8; ++i) fp = (fp << 8) | b[i];  // LCM writes it big-endian
-  if (static_cast<int64_t>(fp) == hash)
+  const int64_t fp = messageFingerprint(data, size);
+  if (fp == hash)
     return "message on " + channel + " does not decode as " + type + ": its payload is broken";
   char line[400];
   std::snprintf(line, sizeof line,

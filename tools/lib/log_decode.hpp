@@ -7,15 +7,13 @@
 #include <cstdint>
 #include <exception>
 
+#include "message_fingerprint.hpp"
+
 namespace nerv {
 
 template <class T>
 bool decodeEvent(const lcm::LogEvent& e, T& msg) {
-  if (e.datalen < 8) return false;
-  const auto* b = static_cast<const uint8_t*>(e.data);
-  uint64_t h = 0;
-  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  if (static_cast<int64_t>(h) != T::getHash()) return false;
+  if (e.datalen < 8 || messageFingerprint(e.data, e.datalen) != T::getHash()) return false;
   try {
     return msg.decode(e.data, 0, e.datalen) >= 0;
   } catch (const std::exception&) {  // a corrupt array length makes the decoder throw

@@ -4,14 +4,6 @@
 
 namespace nerv {
 
-int64_t messageFingerprint(const void* data, int size) {
-  if (size < 8) return 0;
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t h = 0;
-  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  return static_cast<int64_t>(h);
-}
-
 LogFrameReader::LogFrameReader(const std::string& path, const LogFrameOptions& options)
     : options_(options) {
   log_ = std::make_unique<lcm::LogFile>(path, "r");

@@ -24,6 +24,8 @@
 #include "nerv/stixels_t.hpp"
 #include "nerv/surface_normals_t.hpp"
 
+#include "message_fingerprint.hpp"  // messageFingerprint, which the readers of logs use
+
 namespace nerv {
 
 struct LogFrame {
@@ -77,8 +79,5 @@ class LogFrameReader {
   std::set<int64_t> handed_out_;        // seqs already returned (late messages are duplicates)
   bool eof_ = false;
 };
-
-// The first 8 bytes of an LCM message: its type fingerprint.
-int64_t messageFingerprint(const void* data, int size);
 
 }  // namespace nerv

@@ -6,6 +6,7 @@
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
 #include "health_compat.hpp"
+#include "message_fingerprint.hpp"
 #include "nerv/health_t.hpp"
 #include "nerv/health_v1_t.hpp"
 #include "nerv/health_v2_t.hpp"
@@ -290,17 +291,9 @@ void write(JsonWriter& j, const health_t& m) {
   j.endObject();
 }
 
-int64_t fingerprint(const void* data, int size) {
-  if (size < 8) return 0;
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t h = 0;
-  for (int i = 0; i < 8; ++i) h = (h << 8) | b[i];
-  return static_cast<int64_t>(h);
-}
-
 template <class T>
 bool tryType(const void* data, int size, JsonWriter& json, std::string& name) {
-  if (fingerprint(data, size) != T::getHash()) return false;
+  if (messageFingerprint(data, size) != T::getHash()) return false;
   T msg;
   try {
     if (msg.decode(data, 0, size) < 0) return true;  // right type, broken payload
@@ -315,7 +308,7 @@ bool tryType(const void* data, int size, JsonWriter& json, std::string& name) {
 // NERV_HEALTH of an older layout (logs recorded before health_t gained its build stamp or its
 // gauges): written as a health_t, the fields it lacked empty, under its own type's name.
 bool tryOlderHealth(const void* data, int size, JsonWriter& json, std::string& name) {
-  const int64_t fp = fingerprint(data, size);
+  const int64_t fp = messageFingerprint(data, size);
   if (fp != health_v1_t::getHash() && fp != health_v2_t::getHash()) return false;
   health_t m;
   if (!decodeHealth(data, size, m)) return true;  // right type, broken payload
