@@ -22,7 +22,7 @@ DisparityOffset measureDisparityOffset(const MotionTracks& tracks, double fx, do
   for (size_t i = 0; i < m.left.size(); ++i) {
     if (!tracks.tracked[i]) continue;
     const double ub = tracks.before[i].x - cx, vb = tracks.before[i].y - cy, d = m.disparity[i];
-    x.push_back({fx + ub * ub / fx, ub * vb / fx, vb, d, ub * d, ub});
+    x.push_back(stepFlowRow(ub, vb, d, fx));
     y.push_back(m.left[i].x - tracks.before[i].x);
     ud.push_back(std::abs(ub * d));
   }

@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "robust_fit.hpp"
 #include "textured_points.hpp"
 
 namespace nerv::stereo {
@@ -29,6 +30,18 @@ struct MotionTracks {
 // disparity (0 = invalid). Anything else gives no points.
 MotionTracks trackMotion(const cv::Mat& previous_left, const cv::Mat& left, const cv::Mat& disparity,
                          const MotionTrackParams& params = {});
+
+// The terms of a point's image motion along one axis from the previous frame to this one, in
+// the previous view's coordinates from the principal point: `along` is its coordinate on that
+// axis (u' for the columns, v' for the rows), `across` the other one, d its disparity. In order:
+// the rotation about the other axis (fx + along^2 / fx), the cross term of the rotation about
+// this axis (along across / fx), the roll (across), a step across the axis (d), the forward step
+// (along d, exact in these coordinates) and the part of it a disparity offset takes (along). One
+// model for both axes: the shutter check fits the rows, the offset check the columns, and their
+// coefficient 4 is the forward step / (f B), 5 minus the offset times it.
+inline FitRow<6> stepFlowRow(double along, double across, double d, double fx) {
+  return {fx + along * along / fx, along * across / fx, across, d, along * d, along};
+}
 
 // How far the forward step moved the points, for deciding whether there was motion enough to
 // measure: |k| times the 90th percentile of `magnitudes` (|v' d| or |u' d| per point) [px].

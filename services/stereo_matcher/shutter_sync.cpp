@@ -39,7 +39,7 @@ ShutterSync measureShutterSync(const MotionTracks& tracks, const cv::Mat& left, 
     const double ub = tracks.before[i].x - cx, vb = tracks.before[i].y - cy;
     x_stereo.push_back({1.0, u, v, d, v * d});
     y_stereo.push_back(in_right[i].y - m.left[i].y);
-    x_motion.push_back({fx + vb * vb / fx, ub * vb / fx, ub, d, vb * d, vb});
+    x_motion.push_back(stepFlowRow(vb, ub, d, fx));
     y_motion.push_back(m.left[i].y - tracks.before[i].y);
     vd.push_back(std::abs(vb * d));
   }

@@ -50,7 +50,6 @@ class MedianVerdict {
   float lowest() const { return samples() ? *std::min_element(values_.items().begin(), values_.items().end()) : 0; }
   float highest() const { return samples() ? *std::max_element(values_.items().begin(), values_.items().end()) : 0; }
   bool beyond() const { return samples() > 0 && std::abs(median()) > limit_; }
-  bool beyond(float v) const { return std::abs(v) > limit_; }
   // Forgets the values: the next verdict is of the `window` that follow.
   void restart() { values_.restart(); }
   float limit() const { return limit_; }
