@@ -98,20 +98,29 @@ gauge=$(tr -d '\n ' <"$tmp/cols/summary.json" | grep -o '"stereo_matcher/0":{[^}
 awk -v g="$gauge" 'BEGIN { exit !(g <= -0.7) }' || fail "cols: NERV_HEALTH's gauge disparity_offset_px is '$gauge'"
 pass "right views a column over: ${line#*disparity_offset: }"
 
-# Knocked mid-drive: frames 0-10 as recorded, 11-32 with the right views one row down (from the
-# +1 set above, the sequence played on), 33 frames at 10 Hz once.
+# A rig that changes mid-drive: mid_drive NAME CHANGED FROM FRAMES plays FRAMES frames at 10 Hz
+# once, the sequence played on from its first frame after its last: the left views as recorded,
+# the right views as recorded until frame FROM and those of the set CHANGED (a nerv_misalign
+# output: same calibration, same left views) from it on.
 "$BIN/nerv_misalign" --data "$data" --out "$tmp/data_asis" >/dev/null || fail "nerv_misalign (as recorded)"
-mkdir -p "$tmp/data_knocked/left" "$tmp/data_knocked/right"
-cp "$tmp/data_1/calib.yaml" "$tmp/data_knocked/"
-mapfile -t names < <(ls "$tmp/data_1/left")
-for i in $(seq 0 32); do
-  n=${names[$((i % ${#names[@]}))]} from="$tmp/data_1/right"
-  (( i < ${#names[@]} )) && from="$tmp/data_asis/right"
-  cp "$tmp/data_1/left/$n" "$tmp/data_knocked/left/$(printf %06d "$i").png"
-  cp "$from/$n" "$tmp/data_knocked/right/$(printf %06d "$i").png"
-done
-"$NERV_ROOT/tools/nerv" run --data "$tmp/data_knocked" --rate 10 --out "$tmp/knocked" >"$tmp/knocked.txt" 2>&1 \
-  || fail "knocked: nerv run exited with $?: $(tail -n 3 "$tmp/knocked.txt")"
+mapfile -t names < <(ls "$tmp/data_asis/left")
+mid_drive() {
+  local out="$tmp/data_$1" i n from
+  mkdir -p "$out/left" "$out/right"
+  cp "$2/calib.yaml" "$out/"
+  for ((i = 0; i < $4; ++i)); do
+    n=${names[$((i % ${#names[@]}))]} from="$2/right"
+    (( i < $3 )) && from="$tmp/data_asis/right"
+    cp "$tmp/data_asis/left/$n" "$out/left/$(printf %06d "$i").png"
+    cp "$from/$n" "$out/right/$(printf %06d "$i").png"
+  done
+  "$NERV_ROOT/tools/nerv" run --data "$out" --rate 10 --out "$tmp/$1" >"$tmp/$1.txt" 2>&1 \
+    || fail "$1: nerv run exited with $?: $(tail -n 3 "$tmp/$1.txt")"
+}
+
+# Knocked mid-drive: frames 0-10 as recorded, 11-32 with the right views one row down (the +1
+# set above).
+mid_drive knocked "$tmp/data_1" "${#names[@]}" 33
 log="$tmp/knocked/logs/services.log"
 first=$(grep "rectification check" "$log" | head -n 1)
 [[ "$first" == *": aligned" ]] || fail "knocked: the first verdict is not 'aligned': '$first'"
@@ -129,16 +138,7 @@ pass "knocked mid-drive: re-checked at frame $(seq_of "$suspect"), row_misaligne
 # of frame 29 reads the offset (suspect), frame 30 again, and every frame is checked until the
 # verdict of those readings: frame 39-41 (the sequence's loop back from its last frame to its
 # first gives one pair without a reading). Before the change watch: frame 119 at the earliest.
-mkdir -p "$tmp/data_turning/left" "$tmp/data_turning/right"
-cp "$tmp/data_cols/calib.yaml" "$tmp/data_turning/"
-for i in $(seq 0 44); do
-  n=${names[$((i % ${#names[@]}))]} from="$tmp/data_cols/right"
-  (( i < 20 )) && from="$tmp/data_asis/right"
-  cp "$tmp/data_asis/left/$n" "$tmp/data_turning/left/$(printf %06d "$i").png"
-  cp "$from/$n" "$tmp/data_turning/right/$(printf %06d "$i").png"
-done
-"$NERV_ROOT/tools/nerv" run --data "$tmp/data_turning" --rate 10 --out "$tmp/turning" >"$tmp/turning.txt" 2>&1 \
-  || fail "turning: nerv run exited with $?: $(tail -n 3 "$tmp/turning.txt")"
+mid_drive turning "$tmp/data_cols" 20 45
 log="$tmp/turning/logs/services.log"
 first=$(grep "disparity offset check" "$log" | head -n 1)
 [[ "$first" == *": within the limit" ]] || fail "turning: the first offset verdict is not 'within the limit': '$first'"
