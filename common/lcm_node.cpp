@@ -167,6 +167,21 @@ void Node::guarded(const std::function<void()>& body) {
   }
 }
 
+void addProcessGauges(health_t& h, CpuShare& cpu_share) {
+  const ProcessUsage usage = readProcessUsage();
+  const std::pair<const char*, double> process_gauges[] = {
+      {"cpu_percent", cpu_share.percentSince(usage.cpu_s, h.utime)},
+      {"rss_mb", usage.rss_mb},
+      {"rss_peak_mb", usage.rss_peak_mb}};
+  for (const auto& [name, value] : process_gauges) {
+    if (std::find(h.gauge_names.begin(), h.gauge_names.end(), name) != h.gauge_names.end())
+      continue;  // a service's own gauge of that name wins
+    h.gauge_names.push_back(name);
+    h.gauge_values.push_back(value);
+  }
+  h.num_gauges = static_cast<int32_t>(h.gauge_names.size());
+}
+
 void Node::publishHealth() {
   health_t h{};  // every count zero until set: lcm-gen's structs leave them uninitialised
   h.utime = nowUtime();
@@ -187,7 +202,7 @@ void Node::publishHealth() {
     h.gauge_names.push_back(name);
     h.gauge_values.push_back(value);
   }
-  h.num_gauges = static_cast<int32_t>(h.gauge_names.size());
+  addProcessGauges(h, cpu_share_);
   h.latency_p50_ms = percentile(latencies_ms_, 0.5);
   h.latency_p95_ms = percentile(latencies_ms_, 0.95);
   double sum = 0;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "message_check.hpp"
+#include "process_usage.hpp"
 #include "nerv/health_t.hpp"
 #include "seq_gap_tracker.hpp"
 
@@ -47,6 +48,9 @@ int64_t nowUtime();
 // otherwise the payload is broken.
 std::string undecodableMessage(const std::string& channel, const char* type, int64_t hash, const void* data,
                                uint32_t size);
+// Appends the process's cpu_percent (share since cpu_share's last call), rss_mb and rss_peak_mb
+// to a report's gauges and sets num_gauges; a gauge of the same name already there stays.
+void addProcessGauges(health_t& h, CpuShare& cpu_share);
 // This computer's name, as every NERV_HEALTH report carries it.
 std::string hostName();
 
@@ -91,6 +95,7 @@ class Node {
   void count(const std::string& counter, int64_t n = 1) { counters_[counter] += n; }
   // The latest value of a measured quantity (the unit in its name), in every health report
   // from now on: e.g. the rig's row offset, so that a dashboard plots it before it is an error.
+  // Every report also carries the process's cpu_percent, rss_mb and rss_peak_mb.
   void gauge(const std::string& name, double value) { gauges_[name] = value; }
   int64_t counter(const std::string& name) const;
   int64_t framesIn() const { return frames_in_; }
@@ -150,6 +155,7 @@ class Node {
   int64_t frames_in_ = 0, frames_out_ = 0, frames_dropped_ = 0, errors_ = 0;
   std::map<std::string, int64_t> counters_;
   std::map<std::string, double> gauges_;
+  CpuShare cpu_share_;  // cpu_percent in each report: the share since the report before
   std::vector<double> latencies_ms_;   // since the last health report
   std::vector<double> processing_ms_;  // since the last health report
   std::string last_error_;

@@ -2,11 +2,13 @@
 // the frames whose capture time lies in this computer's future (unsynchronised clocks).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "lcm_node.hpp"
+#include "process_usage.hpp"
 #include "nerv/health_t.hpp"
 #include "nerv/health_v1_t.hpp"
 
@@ -67,20 +69,57 @@ TEST(commonNodeHealth, OnlySkewedFramesStillCountAsWorking) {
   EXPECT_EQ(h.status, "ok") << "frames went out: not idle";
 }
 
+// The service's own gauges first (by name), then the process's (process_usage.hpp).
+const std::vector<std::string> kProcessGauges = {"cpu_percent", "rss_mb", "rss_peak_mb"};
+
 TEST(commonNodeHealth, GaugesCarryTheirLatestValue) {
   Node node(memq());
-  EXPECT_EQ(reportOnce(node).num_gauges, 0);
+  EXPECT_EQ(reportOnce(node).gauge_names, kProcessGauges) << "only the process's own gauges";
   node.gauge("row_offset_px", 0.12);
   node.gauge("view_delay_ms", -0.5);
   node.gauge("row_offset_px", 0.93);  // the latest value replaces the one before
   const health_t h = reportOnce(node);
-  ASSERT_EQ(h.num_gauges, 2);
-  ASSERT_EQ(h.gauge_names.size(), 2u);
+  ASSERT_EQ(h.num_gauges, 5);
+  ASSERT_EQ(h.gauge_names.size(), 5u);
   EXPECT_EQ(h.gauge_names[0], "row_offset_px");
   EXPECT_DOUBLE_EQ(h.gauge_values[0], 0.93);
   EXPECT_EQ(h.gauge_names[1], "view_delay_ms");
   EXPECT_DOUBLE_EQ(h.gauge_values[1], -0.5);
-  EXPECT_EQ(reportOnce(node).num_gauges, 2) << "a gauge stays in every report";
+  EXPECT_EQ(std::vector<std::string>(h.gauge_names.begin() + 2, h.gauge_names.end()), kProcessGauges);
+  EXPECT_EQ(reportOnce(node).num_gauges, 5) << "a gauge stays in every report";
+}
+
+double gaugeOf(const health_t& h, const std::string& name) {
+  for (int i = 0; i < h.num_gauges; ++i)
+    if (h.gauge_names[i] == name) return h.gauge_values[i];
+  ADD_FAILURE() << "no gauge " << name;
+  return -1;
+}
+
+// Memory and CPU of the process in every report: a test of this size holds tens of MiB (the
+// LCM library, gtest, its heap), and a report after a busy spell shows the CPU it took.
+TEST(commonNodeHealth, EveryReportCarriesTheProcesssMemoryAndCpu) {
+  Node node(memq());
+  reportOnce(node);
+  // Keep one core busy for 0.3 s of CPU time, then report: the share over that interval is
+  // well above zero whatever the machine's load (the interval counts CPU time, not wall time).
+  const ProcessUsage before = readProcessUsage();
+  volatile double sink = 0;
+  while (readProcessUsage().cpu_s - before.cpu_s < 0.3)
+    for (int i = 0; i < 100000; ++i) sink = sink + i * 1e-9;
+  const health_t h = reportOnce(node);
+  EXPECT_GT(gaugeOf(h, "cpu_percent"), 5.0);
+  EXPECT_LE(gaugeOf(h, "cpu_percent"), 100.0 * 64) << "more than 64 cores' worth";
+  EXPECT_GT(gaugeOf(h, "rss_mb"), 1.0);
+  EXPECT_GE(gaugeOf(h, "rss_peak_mb"), gaugeOf(h, "rss_mb") - 0.01);
+}
+
+TEST(commonNodeHealth, AServicesOwnGaugeOfAProcessNameWins) {
+  Node node(memq());
+  node.gauge("rss_mb", 12.5);
+  const health_t h = reportOnce(node);
+  EXPECT_EQ(std::count(h.gauge_names.begin(), h.gauge_names.end(), "rss_mb"), 1);
+  EXPECT_DOUBLE_EQ(gaugeOf(h, "rss_mb"), 12.5);
 }
 
 // A stage that starts announces itself through its first NERV_HEALTH: the validator and

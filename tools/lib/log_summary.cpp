@@ -12,6 +12,7 @@
 #include "latency_breakdown.hpp"
 #include "log_decode.hpp"
 #include "percentile.hpp"
+#include "resource_trend.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -55,6 +56,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
   std::map<std::string, int64_t> events_per_channel;
   int64_t first_frame_utime = -1, last_detection_utime = -1, detections_events = 0;
   LatencyBreakdown breakdown;
+  ResourceTrend resources;
 
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     ++events_per_channel[e->channel];
@@ -109,6 +111,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       ++detections_events;
     } else if (decodeHealth(e->data, e->datalen, health)) {  // any layout: older logs too
       last_health[health.service + "/" + health.instance] = health;
+      resources.add(health);
     }
   }
 
@@ -174,6 +177,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
   }
   j.endObject();
   breakdown.writeJson(j);
+  resources.writeJson(j);
   j.key("frames");
   j.beginArray();
   for (const auto& [seq, r] : frames) {
@@ -240,6 +244,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       ++builds[h.version.empty() ? "unknown" : h.version];
     }
     for (const auto& [version, n] : builds) t += "build nerv " + version + ": " + std::to_string(n) + " processes\n";
+    t += resources.text();
     *text_report = t;
   }
   return j.str();

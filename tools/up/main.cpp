@@ -127,6 +127,7 @@ struct HealthBoard {
 void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const std::string& host,
                              const std::vector<Child>& children, const std::string& last_event,
                              bool restarted_since_last) {
+  static CpuShare cpu_share;
   health_t h{};  // every count zero until set: lcm-gen's structs leave them uninitialised
   h.utime = nowUtime();
   h.service = "nerv_up";
@@ -147,6 +148,7 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
     h.counter_values.push_back(c.hangs);
   }
   h.num_counters = static_cast<int32_t>(h.counter_names.size());
+  addProcessGauges(h, cpu_share);
   h.latency_p50_ms = h.latency_p95_ms = h.processing_ms = 0;
   // degraded: a service is down (waiting for its restart) or was restarted since the last report.
   h.status = all_running && !restarted_since_last ? "ok" : "degraded";

@@ -1,0 +1,51 @@
+// Memory and CPU of each process over a recorded run, from its NERV_HEALTH gauges (rss_mb,
+// cpu_percent; common/process_usage.hpp): whether a stage's memory grows over a long drive, and
+// what share of the computer's cores it takes. A process that restarted is followed from its
+// new pid on (the restarts are counted; so is a short-lived probe of the same name, such as the
+// nerv_source that `nerv run` starts to see the logger record).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "nerv/health_t.hpp"
+
+namespace nerv {
+
+class JsonWriter;
+
+class ResourceTrend {
+ public:
+  // One health report, in log order. Reports without the gauges (older builds) are skipped.
+  void add(const health_t& h);
+
+  struct Process {
+    int pid = 0;
+    int restarts = 0;           // pids of this name seen before this one
+    int reports = 0;            // of this pid, with the gauges
+    int64_t first_utime = 0, last_utime = 0;
+    double rss_first_mb = 0;    // at its first report (after the warm-up: sent at the first poll)
+    double rss_settled_mb = 0;  // at its first report at least 60 s after the first; 0 before
+    int64_t settled_utime = 0;
+    double rss_last_mb = 0, rss_max_mb = 0;
+    double cpu_sum = 0;         // of cpu_percent over the reports after the first
+    double cpu_max = 0;
+    int cpu_reports = 0;
+    double cpuMean() const { return cpu_reports > 0 ? cpu_sum / cpu_reports : 0; }
+    // Memory growth after the first minute, per hour of running: what a process that leaks
+    // shows; a process's first minute fills caches and pools, which is not growth.
+    double growthMbPerHour() const;
+  };
+  const std::map<std::string, Process>& processes() const { return processes_; }
+
+  // "resources": {"stixel/0": {"pid":..., "rss_first_mb":..., ...}, ...}
+  void writeJson(JsonWriter& j) const;
+  // One line per process.
+  std::string text() const;
+
+ private:
+  std::map<std::string, Process> processes_;  // by "service/instance"
+};
+
+}  // namespace nerv
