@@ -33,16 +33,27 @@ TEST(toolsResourceTrend, MemoryFirstLastPeakAndGrowthAfterTheFirstMinute) {
   EXPECT_DOUBLE_EQ(p.rss_last_mb, 46 + 3540 / 600.0);
   EXPECT_DOUBLE_EQ(p.rss_max_mb, p.rss_last_mb);
   EXPECT_NEAR(p.growthMbPerHour(), 6.0, 1e-9) << "0.1 MiB a minute after the first";
+  EXPECT_NE(trend.text().find("+6.0 MiB/h over the second half"), std::string::npos) << trend.text();
   EXPECT_DOUBLE_EQ(p.cpuMean(), 8) << "the first report's share (the warm-up) is left out";
   EXPECT_DOUBLE_EQ(p.cpu_max, 8);
 }
 
+// An allocator that takes one more step after the first minute has not leaked: the growth is
+// measured over the second half, where the memory is flat again.
+TEST(toolsResourceTrend, OneStepAfterTheFirstMinuteIsNotGrowth) {
+  ResourceTrend trend;
+  for (int s = 0; s <= 900; ++s) trend.add(report("stereo_matcher", 7, s, s < 60 ? 90 : s < 240 ? 97.5 : 98.4, 60));
+  const auto& p = trend.processes().at("stereo_matcher/0");
+  EXPECT_DOUBLE_EQ(p.rss_settled_mb, 97.5);
+  EXPECT_DOUBLE_EQ(p.growthMbPerHour(), 0);
+}
+
 TEST(toolsResourceTrend, AShortRunHasNoGrowthFigure) {
   ResourceTrend trend;
-  for (int s = 0; s < 30; ++s) trend.add(report("validator", 11, s, 20 + s, 3));
+  for (int s = 0; s < 100; ++s) trend.add(report("validator", 11, s, 20 + s, 3));
   const auto& p = trend.processes().at("validator/0");
-  EXPECT_EQ(p.settled_utime, 0);
-  EXPECT_DOUBLE_EQ(p.growthMbPerHour(), 0) << "30 s say nothing about a leak";
+  EXPECT_NE(p.settled_utime, 0);
+  EXPECT_DOUBLE_EQ(p.growthMbPerHour(), 0) << "40 s after the first minute say nothing about a leak";
   EXPECT_EQ(trend.text().find("MiB/h"), std::string::npos);
 }
 

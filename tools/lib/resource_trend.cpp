@@ -44,15 +44,18 @@ void ResourceTrend::add(const health_t& h) {
     p.settled_utime = h.utime;
   }
   ++p.reports;
+  p.rss_series.emplace_back(h.utime, rss);
   p.last_utime = h.utime;
   p.rss_last_mb = rss;
   p.rss_max_mb = std::max(p.rss_max_mb, rss);
 }
 
 double ResourceTrend::Process::growthMbPerHour() const {
-  if (settled_utime == 0) return 0;
-  const double hours = (last_utime - settled_utime) / 3.6e9;
-  return hours > 0 ? (rss_last_mb - rss_settled_mb) / hours : 0;
+  if (settled_utime == 0 || last_utime - settled_utime < kSettleUs) return 0;
+  const int64_t middle = settled_utime + (last_utime - settled_utime) / 2;
+  for (const auto& [utime, rss] : rss_series)
+    if (utime >= middle) return utime < last_utime ? (rss_last_mb - rss) / ((last_utime - utime) / 3.6e9) : 0;
+  return 0;
 }
 
 void ResourceTrend::writeJson(JsonWriter& j) const {
@@ -85,8 +88,9 @@ std::string ResourceTrend::text() const {
                   "resources %-20s memory %.1f MiB at the first report, %.1f at the last, peak %.1f over %.0f s",
                   name.c_str(), p.rss_first_mb, p.rss_last_mb, p.rss_max_mb, (p.last_utime - p.first_utime) / 1e6);
     t += buf;
-    if (p.settled_utime != 0) {
-      std::snprintf(buf, sizeof buf, " (%+.1f MiB/h after the first minute)", p.growthMbPerHour());
+    if (p.settled_utime != 0 && p.last_utime - p.settled_utime >= kSettleUs) {
+      std::snprintf(buf, sizeof buf, ", %.1f after the first minute, %+.1f MiB/h over the second half",
+                    p.rss_settled_mb, p.growthMbPerHour());
       t += buf;
     }
     std::snprintf(buf, sizeof buf, "; CPU %.0f %% of a core on average, %.0f %% at most", p.cpuMean(), p.cpu_max);
