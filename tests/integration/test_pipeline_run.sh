@@ -64,6 +64,15 @@ done
 # every frame says how much of its free space was measured (STIXELS.observed via DETECTIONS)
 [[ $(grep -o '"strips":249' "$out/summary.json" | wc -l) -eq 6 ]] \
   || fail "summary lacks the free-space coverage of 6 frames: $(grep -o '"observed_share.\{0,60\}' "$out/summary.json" | head -3)"
+# every stage reports its memory and CPU, and the summary follows each process's memory
+for st in stereo_matcher stixel snv_extrinsic validator; do
+  rss=$(tr -d '\n ' <"$out/summary.json" | grep -o "\"resources\":{.*" | grep -o "\"$st/0\":{[^}]*}" \
+        | grep -o '"rss_last_mb":[^,}]*' | cut -d: -f2)
+  awk -v r="$rss" 'BEGIN { exit !(r > 5 && r < 4096) }' \
+    || fail "$st/0's memory in the summary's resources is '$rss' MiB: $(grep -o '"resources".\{0,300\}' "$out/summary.json")"
+  grep "\"service\":\"$st\"" "$out/health.jsonl" | tail -n1 | grep -q '"gauge_names":\[[^]]*"cpu_percent","rss_mb","rss_peak_mb"' \
+    || fail "$st's health lacks the process gauges: $(grep "\"service\":\"$st\"" "$out/health.jsonl" | tail -n1)"
+done
 "$BIN/nerv_export" "$out/nerv.lcmlog" --disparity-png "$out/disp" >/dev/null
 [[ $(ls "$out/disp" | wc -l) -eq 6 ]] || fail "expected 6 disparity PNGs"
 pass "summary and disparity export"
