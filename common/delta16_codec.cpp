@@ -13,7 +13,8 @@ void encodeDelta16(const cv::Mat& fixed, std::vector<uint8_t>& out) {
     for (int u = 0; u < fixed.cols; ++u) {
       const int diff = static_cast<int>(row[u]) - prev;
       prev = row[u];
-      uint32_t z = static_cast<uint32_t>((diff << 1) ^ (diff >> 31));  // zigzag: 0, -1, 1, -2, ... -> 0, 1, 2, 3, ...
+      // zigzag: 0, -1, 1, -2, ... -> 0, 1, 2, 3, ... (shifted as unsigned: a negative left shift is UB in C++17)
+      uint32_t z = (static_cast<uint32_t>(diff) << 1) ^ static_cast<uint32_t>(diff >> 31);
       while (z >= 0x80) {
         *o++ = static_cast<uint8_t>(z | 0x80);
         z >>= 7;

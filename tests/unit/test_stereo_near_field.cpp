@@ -43,7 +43,8 @@ struct BoxScene {
 };
 BoxScene boxScene(int near_px, int far_px = 20) {
   const int W = 640, H = 240, pad = 300;
-  const cv::Mat back = texture(H, W + pad, 1), front = texture(H, W + pad, 2);
+  // The right view reads the background up to x + far_px + pad: wide enough for that.
+  const cv::Mat back = texture(H, W + pad + far_px, 1), front = texture(H, W + pad + far_px, 2);
   BoxScene s;
   s.box = cv::Rect(220, 60, 240, 140);
   s.left.create(H, W, CV_8UC1);
