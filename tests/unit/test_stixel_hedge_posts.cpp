@@ -98,7 +98,8 @@ TEST(stixelHedgePosts, APostAtAHedgeGroupsOuterEndGetsItsOwnBox) {
 
   // The mirror image left of the centre: the post at the group's right end.
   const std::vector<Stixel> left = strips(cam, 450, 18.7f, {0.5f, 0.45f, 0.5f, 0.45f, 0.9f, 0.9f});
-  const Hypothesis* mirror = boxAt(groupStixels(left, cam, withRule(1.3f, true)), 470);
+  const std::vector<Hypothesis> mirrored = groupStixels(left, cam, withRule(1.3f, true));  // kept: boxAt points into it
+  const Hypothesis* mirror = boxAt(mirrored, 470);
   ASSERT_NE(mirror, nullptr);
   EXPECT_EQ(mirror->box.w, 10);
 }

@@ -32,11 +32,13 @@ TEST(stixelOverhang, APedestrianUnderATreeCrownGetsAPedestriansBox) {
   const int u = static_cast<int>(cam.cx);
   Params off;
   off.overhang_min_reach_m = 0.0f;
-  const Hypothesis* tree = at(estimateStixels(disp, cam, off).hypotheses, 10.0f, u);
+  const StixelResult without = estimateStixels(disp, cam, off);  // kept: `at` points into it
+  const Hypothesis* tree = at(without.hypotheses, 10.0f, u);
   ASSERT_NE(tree, nullptr);
   EXPECT_GT(tree->height_m, 4.0f) << "without the rule the pedestrian's strips run up through the crown";
 
-  const Hypothesis* ped = at(estimateStixels(disp, cam, Params{}).hypotheses, 10.0f, u);
+  const StixelResult with = estimateStixels(disp, cam, Params{});
+  const Hypothesis* ped = at(with.hypotheses, 10.0f, u);
   ASSERT_NE(ped, nullptr);
   EXPECT_NEAR(ped->height_m, 1.75f, 0.15f);
   EXPECT_NEAR(ped->width_m, 0.6f, 0.15f);
@@ -53,7 +55,8 @@ TEST(stixelOverhang, ASignPlateStaysInItsPostsBoxAndAWallBesideIsNoOverhang) {
     cv::Mat disp = renderDisparity(scene, cam);
     paintFace(disp, scene, cam, 12.0f, -0.25, 0.25, 0.0, 3.0);
     paintFace(disp, scene, cam, 12.0f, -0.3, 0.3, 2.4, 3.0);
-    const Hypothesis* pole = at(estimateStixels(disp, cam, Params{}).hypotheses, 12.0f, u);
+    const StixelResult result = estimateStixels(disp, cam, Params{});  // kept: `at` points into it
+    const Hypothesis* pole = at(result.hypotheses, 12.0f, u);
     ASSERT_NE(pole, nullptr);
     EXPECT_NEAR(pole->height_m, 3.0f, 0.2f);
   }
@@ -71,7 +74,8 @@ TEST(stixelOverhang, ASignPlateStaysInItsPostsBoxAndAWallBesideIsNoOverhang) {
       paintFace(disp, scene, cam, 10.0f, -0.3, 0.3, 0.0, 1.8);
       paintFace(disp, scene, cam, 10.0f, -0.3, 0.3, 2.0, 3.0);
       paintFace(disp, scene, cam, 10.0f, 0.5, 3.0, wall_bottom_m, 3.0);
-      const Hypothesis* h = at(estimateStixels(disp, cam, p).hypotheses, 10.0f, u);
+      const StixelResult result = estimateStixels(disp, cam, p);  // kept: `at` points into it
+      const Hypothesis* h = at(result.hypotheses, 10.0f, u);
       ASSERT_NE(h, nullptr);
       EXPECT_NEAR(h->height_m, wall_bottom_m > 0 ? 1.8f : 3.0f, 0.15f) << "face from " << wall_bottom_m << " m";
     }
