@@ -122,8 +122,10 @@ int main(int argc, char** argv) {
     lcm.publish("NERV_HEALTH", &twin);
     settle();
   }
-  // 2. size field disagrees with the data
+  // 2. the image's byte count disagrees with its width, height and channels: 7 bytes more
+  // (size must stay the data's length, which LCM encodes: a larger size alone read past it)
   stereo_frame_t f = frame(100);
+  f.left.data.resize(f.left.data.size() + 7, 0);
   f.left.size += 7;
   lcm.publish("STEREO_FRAME", &f);
   settle();
