@@ -27,11 +27,11 @@ TEST(toolsResourceTrend, MemoryFirstLastPeakAndGrowthAfterTheFirstMinute) {
   trend.add(report("stixel", 10, 0, 40, 900));  // first report: its share covers the warm-up
   for (int s = 1; s <= 3600; ++s) trend.add(report("stixel", 10, s, s < 60 ? 40 + s * 0.1 : 46 + (s - 60) / 600.0, 8));
   const auto& p = trend.processes().at("stixel/0");
-  EXPECT_EQ(p.reports, 3601);
-  EXPECT_DOUBLE_EQ(p.rss_first_mb, 40);
-  EXPECT_DOUBLE_EQ(p.rss_settled_mb, 46);
-  EXPECT_DOUBLE_EQ(p.rss_last_mb, 46 + 3540 / 600.0);
-  EXPECT_DOUBLE_EQ(p.rss_max_mb, p.rss_last_mb);
+  EXPECT_EQ(p.reports(), 3601);
+  EXPECT_DOUBLE_EQ(p.rssFirstMb(), 40);
+  EXPECT_DOUBLE_EQ(p.rssSettledMb(), 46);
+  EXPECT_DOUBLE_EQ(p.rssLastMb(), 46 + 3540 / 600.0);
+  EXPECT_DOUBLE_EQ(p.rssMaxMb(), p.rssLastMb());
   EXPECT_NEAR(p.growthMbPerHour(), 6.0, 1e-9) << "0.1 MiB a minute after the first";
   EXPECT_NE(trend.text().find("+6.0 MiB/h over the second half"), std::string::npos) << trend.text();
   EXPECT_DOUBLE_EQ(p.cpuMean(), 8) << "the first report's share (the warm-up) is left out";
@@ -44,7 +44,7 @@ TEST(toolsResourceTrend, OneStepAfterTheFirstMinuteIsNotGrowth) {
   ResourceTrend trend;
   for (int s = 0; s <= 900; ++s) trend.add(report("stereo_matcher", 7, s, s < 60 ? 90 : s < 240 ? 97.5 : 98.4, 60));
   const auto& p = trend.processes().at("stereo_matcher/0");
-  EXPECT_DOUBLE_EQ(p.rss_settled_mb, 97.5);
+  EXPECT_DOUBLE_EQ(p.rssSettledMb(), 97.5);
   EXPECT_DOUBLE_EQ(p.growthMbPerHour(), 0);
 }
 
@@ -52,7 +52,7 @@ TEST(toolsResourceTrend, AShortRunHasNoGrowthFigure) {
   ResourceTrend trend;
   for (int s = 0; s < 100; ++s) trend.add(report("validator", 11, s, 20 + s, 3));
   const auto& p = trend.processes().at("validator/0");
-  EXPECT_NE(p.settled_utime, 0);
+  EXPECT_NE(p.settled(), nullptr);
   EXPECT_DOUBLE_EQ(p.growthMbPerHour(), 0) << "40 s after the first minute say nothing about a leak";
   EXPECT_EQ(trend.text().find("MiB/h"), std::string::npos);
 }
@@ -66,9 +66,9 @@ TEST(toolsResourceTrend, ARestartedProcessIsFollowedFromItsNewPid) {
   const auto& p = trend.processes().at("stereo_matcher/0");
   EXPECT_EQ(p.pid, 21);
   EXPECT_EQ(p.restarts, 1);
-  EXPECT_EQ(p.reports, 2);
-  EXPECT_DOUBLE_EQ(p.rss_first_mb, 70);
-  EXPECT_DOUBLE_EQ(p.rss_max_mb, 75) << "the old process's peak is not the new one's";
+  EXPECT_EQ(p.reports(), 2);
+  EXPECT_DOUBLE_EQ(p.rssFirstMb(), 70);
+  EXPECT_DOUBLE_EQ(p.rssMaxMb(), 75) << "the old process's peak is not the new one's";
   EXPECT_DOUBLE_EQ(p.cpuMean(), 60);
   EXPECT_NE(trend.text().find("figures of pid 21, after 1 earlier process"), std::string::npos) << trend.text();
 }

@@ -25,36 +25,43 @@ constexpr int64_t kSettleUs = 60'000'000;
 void ResourceTrend::add(const health_t& h) {
   double rss = 0, cpu = 0;
   if (!gaugeOf(h, "rss_mb", &rss)) return;
-  const bool has_cpu = gaugeOf(h, "cpu_percent", &cpu);
   Process& p = processes_[h.service + "/" + h.instance];
-  if (p.reports == 0 || p.pid != h.pid) {
-    const int restarts = p.reports == 0 ? p.restarts : p.restarts + 1;
+  if (p.rss_series.empty() || p.pid != h.pid) {
+    const int restarts = p.rss_series.empty() ? p.restarts : p.restarts + 1;
     p = Process{};
     p.restarts = restarts;
     p.pid = h.pid;
-    p.first_utime = h.utime;
-    p.rss_first_mb = rss;
-  } else if (has_cpu) {  // the first report's share covers the warm-up since the start
+  } else if (gaugeOf(h, "cpu_percent", &cpu)) {  // the first report's share covers the warm-up since the start
     p.cpu_sum += cpu;
     p.cpu_max = std::max(p.cpu_max, cpu);
     ++p.cpu_reports;
   }
-  if (p.settled_utime == 0 && h.utime - p.first_utime >= kSettleUs) {
-    p.rss_settled_mb = rss;
-    p.settled_utime = h.utime;
-  }
-  ++p.reports;
   p.rss_series.emplace_back(h.utime, rss);
-  p.last_utime = h.utime;
-  p.rss_last_mb = rss;
-  p.rss_max_mb = std::max(p.rss_max_mb, rss);
+}
+
+double ResourceTrend::Process::rssMaxMb() const {
+  double m = 0;
+  for (const auto& [utime, rss] : rss_series) m = std::max(m, rss);
+  return m;
+}
+
+const std::pair<int64_t, double>* ResourceTrend::Process::settled() const {
+  for (const auto& report : rss_series)
+    if (report.first - rss_series.front().first >= kSettleUs) return &report;
+  return nullptr;
+}
+
+bool ResourceTrend::Process::hasGrowth() const {
+  const auto* s = settled();
+  return s && rss_series.back().first - s->first >= kSettleUs;
 }
 
 double ResourceTrend::Process::growthMbPerHour() const {
-  if (settled_utime == 0 || last_utime - settled_utime < kSettleUs) return 0;
-  const int64_t middle = settled_utime + (last_utime - settled_utime) / 2;
+  if (!hasGrowth()) return 0;
+  const int64_t last = rss_series.back().first;
+  const int64_t middle = settled()->first + (last - settled()->first) / 2;
   for (const auto& [utime, rss] : rss_series)
-    if (utime >= middle) return utime < last_utime ? (rss_last_mb - rss) / ((last_utime - utime) / 3.6e9) : 0;
+    if (utime >= middle) return utime < last ? (rssLastMb() - rss) / ((last - utime) / 3.6e9) : 0;
   return 0;
 }
 
@@ -66,12 +73,12 @@ void ResourceTrend::writeJson(JsonWriter& j) const {
     j.beginObject();
     j.field("pid", p.pid);
     j.field("restarts", p.restarts);
-    j.field("reports", p.reports);
-    j.field("span_s", (p.last_utime - p.first_utime) / 1e6);
-    j.field("rss_first_mb", p.rss_first_mb);
-    j.field("rss_settled_mb", p.rss_settled_mb);
-    j.field("rss_last_mb", p.rss_last_mb);
-    j.field("rss_max_mb", p.rss_max_mb);
+    j.field("reports", p.reports());
+    j.field("span_s", p.spanS());
+    j.field("rss_first_mb", p.rssFirstMb());
+    j.field("rss_settled_mb", p.rssSettledMb());
+    j.field("rss_last_mb", p.rssLastMb());
+    j.field("rss_max_mb", p.rssMaxMb());
     j.field("rss_growth_mb_per_hour", p.growthMbPerHour());
     j.field("cpu_percent_mean", p.cpuMean());
     j.field("cpu_percent_max", p.cpu_max);
@@ -86,11 +93,11 @@ std::string ResourceTrend::text() const {
   for (const auto& [name, p] : processes_) {
     std::snprintf(buf, sizeof buf,
                   "resources %-20s memory %.1f MiB at the first report, %.1f at the last, peak %.1f over %.0f s",
-                  name.c_str(), p.rss_first_mb, p.rss_last_mb, p.rss_max_mb, (p.last_utime - p.first_utime) / 1e6);
+                  name.c_str(), p.rssFirstMb(), p.rssLastMb(), p.rssMaxMb(), p.spanS());
     t += buf;
-    if (p.settled_utime != 0 && p.last_utime - p.settled_utime >= kSettleUs) {
+    if (p.hasGrowth()) {
       std::snprintf(buf, sizeof buf, ", %.1f after the first minute, %+.1f MiB/h over the second half",
-                    p.rss_settled_mb, p.growthMbPerHour());
+                    p.rssSettledMb(), p.growthMbPerHour());
       t += buf;
     }
     std::snprintf(buf, sizeof buf, "; CPU %.0f %% of a core on average, %.0f %% at most", p.cpuMean(), p.cpu_max);

@@ -24,18 +24,23 @@ class ResourceTrend {
 
   struct Process {
     int pid = 0;
-    int restarts = 0;           // pids of this name seen before this one
-    int reports = 0;            // of this pid, with the gauges
-    int64_t first_utime = 0, last_utime = 0;
-    double rss_first_mb = 0;    // at its first report (after the warm-up: sent at the first poll)
-    double rss_settled_mb = 0;  // at its first report at least 60 s after the first; 0 before
-    int64_t settled_utime = 0;
-    std::vector<std::pair<int64_t, double>> rss_series;  // (utime, rss_mb) of every report
-    double rss_last_mb = 0, rss_max_mb = 0;
-    double cpu_sum = 0;         // of cpu_percent over the reports after the first
+    int restarts = 0;  // pids of this name seen before this one
+    std::vector<std::pair<int64_t, double>> rss_series;  // (utime, rss_mb) of each report of this pid
+    double cpu_sum = 0;  // of cpu_percent over the reports after the first
     double cpu_max = 0;
     int cpu_reports = 0;
+
+    int reports() const { return static_cast<int>(rss_series.size()); }
+    double spanS() const { return (rss_series.back().first - rss_series.front().first) / 1e6; }
+    double rssFirstMb() const { return rss_series.front().second; }  // after the warm-up: sent at the first poll
+    double rssLastMb() const { return rss_series.back().second; }
+    double rssMaxMb() const;
+    // The first report at least 60 s after the first one; nullptr before.
+    const std::pair<int64_t, double>* settled() const;
+    double rssSettledMb() const { return settled() ? settled()->second : 0; }
     double cpuMean() const { return cpu_reports > 0 ? cpu_sum / cpu_reports : 0; }
+    // Whether the reports reach a minute past the settled one: enough for a growth figure.
+    bool hasGrowth() const;
     // Memory growth per hour over the second half of the time after the first minute: a process
     // that leaks grows in both halves; its first minute fills caches and pools, and the allocator
     // may take one more step later (the soak in the README: the matcher +0.9 MiB once, at minute
