@@ -46,6 +46,12 @@ int serve(ServiceConfig& config) {
   config.section().get("max_row_offset_px", rig_params.max_row_offset_px, 0.05, 100.0);
   config.section().get("max_view_delay_ms", rig_params.max_view_delay_ms, 0.1, 1000.0);
   config.section().get("max_disparity_offset_px", rig_params.max_disparity_offset_px, 0.05, 100.0);
+  // Rows off since calibration are corrected until the rig is recalibrated (row_correction.hpp):
+  // the right views resampled by the measured plane once a verdict finds the matched rows off by
+  // more than row_correction_above_px; the error row_misaligned still asks for a recalibration.
+  config.section().get("row_correction", rig_params.row_correction);
+  config.section().get("row_correction_above_px", rig_params.row_correction_above_px, 0.05, 100.0);
+  config.section().get("max_row_correction_px", rig_params.max_row_correction_px, 0.0, 100.0);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -102,16 +108,17 @@ int serve(ServiceConfig& config) {
     const auto start = std::chrono::steady_clock::now();
     out.header = frame.header;
     out.calib = frame.calib;
+    // The right view as the rig's row correction has it (the same view while there is none).
     if (frame.calib.rectified) {
       matched_left = toGray(left);
-      matched_right = toGray(right);
+      matched_right = rig.rightToMatch(toGray(right));
       matcher->compute(matched_left, matched_right, disparity, confidence);
     } else {
       const StereoCamera& cam = rectifier.rectify(raw, toGray(left), toGray(right), left_rect,
                                                   right_rect);
-      matcher->compute(left_rect, right_rect, disparity, confidence);
       matched_left = left_rect;
-      matched_right = right_rect;
+      matched_right = rig.rightToMatch(right_rect);
+      matcher->compute(matched_left, matched_right, disparity, confidence);
       out.calib.fx = cam.fx;  // the disparity refers to the rectified pair
       out.calib.fy = cam.fy;
       out.calib.cx = cam.cx;

@@ -28,7 +28,7 @@ float medianOf(std::vector<float> v) {
 }  // namespace
 
 RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
-                           const RowOffsetParams& p) {
+                           const RowOffsetParams& p, const RowPlane& applied) {
   RowOffset out;
   if (left.empty() || left.type() != CV_8UC1 || right.size() != left.size() || right.type() != CV_8UC1 ||
       disparity.size() != left.size() || disparity.type() != CV_32FC1)
@@ -88,12 +88,19 @@ RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::
   }
   residuals();
   for (float& r : res) r = std::abs(r);
-  std::vector<double> model(dy.size());
-  for (size_t i = 0; i < dy.size(); ++i) model[i] = static_cast<float>(std::abs(a + b * u[i] + c * v[i]));
-  out.worst_px = static_cast<float>(percentile(std::move(model), 0.9));
-  out.offset_px = static_cast<float>(a);
-  out.slope_x = static_cast<float>(b);
-  out.slope_y = static_cast<float>(c);
+  // What is left in these views, and the rig's plane: the correction they were made with plus that.
+  const RowPlane left_over{a, b, c}, rig = applied + left_over;
+  const auto worst = [&](const RowPlane& q) {
+    std::vector<double> model(dy.size());
+    for (size_t i = 0; i < dy.size(); ++i)
+      model[i] = static_cast<float>(std::abs(q.offset_px + q.slope_x * u[i] + q.slope_y * v[i]));
+    return static_cast<float>(percentile(std::move(model), 0.9));
+  };
+  out.residual_worst_px = worst(left_over);
+  out.worst_px = applied.zero() ? out.residual_worst_px : worst(rig);
+  out.offset_px = static_cast<float>(rig.offset_px);
+  out.slope_x = static_cast<float>(rig.slope_x);
+  out.slope_y = static_cast<float>(rig.slope_y);
   out.spread_px = 1.4826f * medianOf(res);
   out.valid = std::isfinite(out.offset_px) && std::isfinite(out.slope_x) && std::isfinite(out.slope_y);
   return out;
@@ -104,10 +111,10 @@ bool RowOffsetMonitor::add(const RowOffset& m) { return m.valid && checks_.add(m
 RowOffset RowOffsetMonitor::median() const {
   RowOffset m;
   if (checks_.size() == 0) return m;
-  std::vector<float> a, b, c, worst, spread;
+  std::vector<float> a, b, c, worst, residual, spread;
   for (const RowOffset& r : checks_.items()) {
     a.push_back(r.offset_px), b.push_back(r.slope_x), c.push_back(r.slope_y);
-    worst.push_back(r.worst_px), spread.push_back(r.spread_px);
+    worst.push_back(r.worst_px), residual.push_back(r.residual_worst_px), spread.push_back(r.spread_px);
   }
   m.valid = true;
   m.points = static_cast<int>(checks_.items().back().points);
@@ -115,6 +122,7 @@ RowOffset RowOffsetMonitor::median() const {
   m.slope_x = medianOf(b);
   m.slope_y = medianOf(c);
   m.worst_px = medianOf(worst);
+  m.residual_worst_px = medianOf(residual);
   m.spread_px = medianOf(spread);
   return m;
 }

@@ -28,6 +28,7 @@
 
 #include <string>
 
+#include "row_plane.hpp"
 #include "verdict_window.hpp"
 
 namespace nerv::stereo {
@@ -48,15 +49,23 @@ struct RowOffset {
   float slope_y = 0;      // c: change per row [px/px]
   float worst_px = 0;     // 90th percentile of the plane's |dy| at the tracked points [px]
   float spread_px = 0;    // 1.4826 x median absolute deviation of the points from the plane [px]
+  // What the matcher still sees of it: with a correction applied to the right view
+  // (row_correction.hpp) the plane above is the rig's, the correction plus what is left of
+  // it in the corrected view, and this is the 90th percentile of what is left [px]; without
+  // one, the same as worst_px.
+  float residual_worst_px = 0;
+  RowPlane plane() const { return {offset_px, slope_x, slope_y}; }
 };
 
 // left, right: the rectified 8-bit gray views the matcher saw; disparity: its CV_32F
-// result (0 = invalid). Throws nothing; a flat or disparity-less frame gives valid = false.
+// result (0 = invalid); applied: the correction the right view was resampled with, added to
+// what is measured in it so that the plane is the rig's against its calibration. Throws
+// nothing; a flat or disparity-less frame gives valid = false.
 RowOffset measureRowOffset(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
-                           const RowOffsetParams& params = {});
+                           const RowOffsetParams& params = {}, const RowPlane& applied = {});
 
-// The median of the last `window` valid measurements (each of a, b, c and the worst), and
-// whether the worst exceeds the limit.
+// The median of the last `window` valid measurements (each of a, b, c, the worst and the
+// residual worst), and whether the worst exceeds the limit.
 class RowOffsetMonitor {
  public:
   RowOffsetMonitor(int window, float max_offset_px) : checks_(window), max_(max_offset_px) {}

@@ -52,7 +52,8 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   const bool row_burst = row_burst_left_ > 0;
   if (row_burst) --row_burst_left_;
   ++checks_;
-  const RowOffset m = measureRowOffset(left, right, disparity);
+  // Measured in the views as matched: with a correction, the rig's rows are it plus what is left.
+  const RowOffset m = measureRowOffset(left, right, disparity, {}, correction_.plane());
   out.push_back({RigFinding::Kind::Count, m.valid ? "row_checks" : "row_checks_unmeasured", ""});
   // Too few matched points to measure the rows: does one view show nothing, else are the
   // views the right way round? Only then, as a rig that matches needs neither.
@@ -75,13 +76,15 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                               100.0 * order.share_rightward, order.votes)});
   // A reading on the other side of the limit from the last verdict: check every frame, and let
   // the next verdict be of these checks alone rather than wait until they outnumber the old
-  // ones in a window that spans 100 frames.
+  // ones in a window that spans 100 frames. What counts is what the matcher sees: with a
+  // correction, a rig knocked again or mended moves what is left of its rows.
   if (m.valid && verdict_ != Verdict::None && !row_burst &&
-      (m.worst_px > p_.max_row_offset_px) != (verdict_ == Verdict::Misaligned)) {
+      (m.residual_worst_px > p_.max_row_offset_px) != (verdict_ == Verdict::Misaligned)) {
     out.push_back({RigFinding::Kind::Log, "",
                    cv::format("rectification check: this frame's rows are up to %.2f px off against the last "
-                              "verdict's %.2f px (limit %.2f): checking every frame for the next %d checks",
-                              m.worst_px, verdict_worst_, p_.max_row_offset_px, kVerdictChecks)});
+                              "verdict's %.2f px (limit %.2f)%s: checking every frame for the next %d checks",
+                              m.residual_worst_px, verdict_worst_, p_.max_row_offset_px,
+                              correction_.active() ? " in the corrected right view" : "", kVerdictChecks)});
     out.push_back({RigFinding::Kind::Count, "row_rechecks", ""});
     rows_.restart();
     row_burst_left_ = kVerdictChecks - 1;
@@ -89,24 +92,72 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   }
   checkAgainstMotion(previous, right, disparity, timing, out);
   if (!rows_.add(m)) return out;
-  verdict_ = rows_.misaligned() ? Verdict::Misaligned : Verdict::Aligned;
   const RowOffset median = rows_.median();
-  verdict_worst_ = median.worst_px;
-  if (rows_.misaligned()) {
+  // Of the checks this verdict is of, before a correction restarts the window.
+  const std::string said = rows_.describe();
+  const bool misaligned = rows_.misaligned();  // the rig against its calibration
+  verdict_ = median.residual_worst_px > p_.max_row_offset_px ? Verdict::Misaligned : Verdict::Aligned;
+  verdict_worst_ = median.residual_worst_px;
+  const bool was_corrected = correction_.active();
+  const bool changed = correctRows(median, left.size(), out);
+  // What the matcher does about it, for the lines below.
+  std::string matcher;
+  if (changed && correction_.active())
+    matcher = cv::format("; from the next frame the stereo_matcher resamples its right views by %.2f px at most "
+                         "(row_correction)", correction_.plane().largestOver(left.size()));
+  else if (changed)
+    matcher = "; the stereo_matcher no longer resamples its right views (row_correction)";
+  else if (was_corrected)
+    matcher = cv::format("; the stereo_matcher resamples its right views (row_correction), which leaves up to "
+                         "%.2f px",
+                         median.residual_worst_px);
+  if (misaligned) {
+    const bool corrected = correction_.active() && median.residual_worst_px <= p_.max_row_offset_px;
     out.push_back({RigFinding::Kind::Error, "row_misaligned",
-                   "rectification: " + rows_.describe() + ": the rig no longer matches its calibration " +
-                       cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) +
+                   "rectification: " + said + ": the rig no longer matches its calibration " +
+                       cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) + matcher +
                        (unsynchronised_ ? "; but the views are also taken apart (views_unsynchronised), which moves "
                                           "rows while driving: fix the cameras' trigger before recalibrating"
-                                        : "; disparity and detections degrade, recalibrate it")});
+                        : corrected || (changed && correction_.active()) ? "; recalibrate it"
+                                                                          : "; disparity and detections degrade, "
+                                                                            "recalibrate it")});
     worst_said_ = -1.0f;  // back within the limit: said again
-  } else if (worst_said_ < 0 || std::abs(median.worst_px - worst_said_) >= 0.1f) {
-    out.push_back({RigFinding::Kind::Log, "", "rectification check: " + rows_.describe() + ": aligned"});
+  } else if (changed || worst_said_ < 0 || std::abs(median.worst_px - worst_said_) >= 0.1f) {
+    out.push_back({RigFinding::Kind::Log, "", "rectification check: " + said + ": aligned" + matcher});
     worst_said_ = median.worst_px;
   }
   out.push_back({RigFinding::Kind::Gauge, "row_offset_px", "", median.worst_px});
   out.push_back({RigFinding::Kind::Gauge, "row_turn_deg", "", std::atan(median.slope_x) * 180 / CV_PI});
+  if (p_.row_correction) {
+    out.push_back({RigFinding::Kind::Gauge, "row_residual_px", "", median.residual_worst_px});
+    out.push_back({RigFinding::Kind::Gauge, "row_correction_px", "", correction_.plane().largestOver(left.size())});
+  }
   return out;
+}
+
+bool RigCheck::correctRows(const RowOffset& median, cv::Size size, std::vector<RigFinding>& out) {
+  // Not while the views are taken apart: driving moves their rows then, not the rig.
+  if (!p_.row_correction || unsynchronised_) return false;
+  RowPlane target;  // a rig back within the threshold needs no correction: the views as they are, byte for byte
+  if (median.worst_px > p_.row_correction_above_px) {
+    if (median.residual_worst_px <= p_.row_correction_above_px) return false;  // what is left is small: keep it
+    target = median.plane();
+    // Beyond the largest correction, as far as it goes; the rest stays in the error.
+    const double largest = target.largestOver(size);
+    if (largest > p_.max_row_correction_px) target = target.scaled(p_.max_row_correction_px / largest);
+  } else if (!correction_.active()) {
+    return false;
+  }
+  // The same correction again (one held at max_row_correction_px): nothing to change or re-check.
+  const RowPlane& now = correction_.plane();
+  if ((target + now.scaled(-1)).largestOver(size) < 0.02) return false;
+  correction_.set(target);
+  out.push_back({RigFinding::Kind::Count, "row_corrections", ""});
+  // The next verdict is of the views as corrected, from the next 10 frames.
+  rows_.restart();
+  row_burst_left_ = kVerdictChecks;
+  check_next_ = std::max(check_next_, kVerdictChecks);
+  return true;
 }
 
 void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity,

@@ -10,7 +10,11 @@
 // moment (shutter_sync.hpp) and whether every disparity is off by the same amount
 // (disparity_offset.hpp); two readings in a row against the last verdict of either make the
 // checks run on every frame until a verdict of those readings alone (change_watch.hpp), 11-20
-// frames after a trigger lost or a camera turned mid-drive. The service reports what comes
+// frames after a trigger lost or a camera turned mid-drive. A row verdict that finds the
+// matched views' rows off by more than row_correction_above_px sets the correction the right
+// views are resampled with from the next frame on (row_correction.hpp) and checks the next
+// 10 frames; the rows are then said against the calibration (the correction plus what is
+// left), so the error that asks for a recalibration stays. The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -23,6 +27,7 @@
 #include "disparity_offset.hpp"
 #include "frozen_view.hpp"
 #include "rectification_check.hpp"
+#include "row_correction.hpp"
 #include "shutter_sync.hpp"
 
 #include <cstdint>
@@ -33,6 +38,9 @@ struct RigCheckParams {
   int check_every = 10;         // frames between row checks after the first ones; 0 = no row checks
   int first_checks = 10;        // checks on each of the first frames, so the first verdict comes early
   float max_row_offset_px = 0.4f;
+  bool row_correction = true;            // resample the right views by the rows measured off (row_correction.hpp)
+  float row_correction_above_px = 0.25f;  // ... once what the matcher sees of them is beyond this where it matches
+  float max_row_correction_px = 5.0f;     // at most this far anywhere in the view (the rest stays an error)
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
   float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error
@@ -60,11 +68,17 @@ class RigCheck {
   explicit RigCheck(const RigCheckParams& params = {});
   // Every accepted pair, as decoded, before it is matched.
   std::vector<RigFinding> beforeMatching(const cv::Mat& left, const cv::Mat& right);
+  // The right view to match (8-bit gray): as it is, or resampled by the row correction the
+  // verdicts so far have set (valid until the next call).
+  const cv::Mat& rightToMatch(const cv::Mat& right) { return correction_.apply(right); }
+  const RowPlane& rowCorrection() const { return correction_.plane(); }
   // Every matched pair: the gray views the matcher saw and its disparity (CV_32F).
   std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
                                         const PairTiming& timing = {});
 
  private:
+  // At a row verdict: sets, changes or drops the correction; true when it changed.
+  bool correctRows(const RowOffset& median, cv::Size size, std::vector<RigFinding>& out);
   void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
                           std::vector<RigFinding>& out);
   // A motion reading against its last verdict: the next frame checked too, or the window forgotten
@@ -75,12 +89,13 @@ class RigCheck {
   RigCheckParams p_;
   FrozenViewCheck frozen_;
   RowOffsetMonitor rows_;
+  RowCorrection correction_;
   long long frames_ = 0, checks_ = 0;
   // An aligned verdict is logged the first time, after an error, and whenever the rows moved
   // by 0.1 px or more since the last such line, so a drift shows before it is an error.
   float worst_said_ = -1.0f;
   enum class Verdict { None, Aligned, Misaligned } verdict_ = Verdict::None;
-  float verdict_worst_ = 0;  // the last verdict's median of the worst offsets [px]
+  float verdict_worst_ = 0;  // the last verdict's median of the worst offsets the matcher saw [px]
   int check_next_ = 0;       // frames still checked, each: after a reading against a verdict
   int row_burst_left_ = 0;   // row checks still to come of a burst after a row reading against the verdict
   // The shutter check compares with the previous matched left view: two buffers, alternated,

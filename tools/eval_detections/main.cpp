@@ -2,7 +2,7 @@
 //
 //   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
 //                        [--min-iou 0.5] [--visible] [--difficulty easy|moderate|hard]
-//                        [--count-far-detections] [--extrinsics FILE] [--json]
+//                        [--count-far-detections] [--extrinsics FILE] [--from-seq N] [--json]
 //
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
@@ -16,6 +16,8 @@
 // as the KITTI devkit ignores detections below its minimum height;
 // --count-far-detections counts those as false positives (the convention
 // before 2026-12-02's sixth session).
+// --from-seq N scores only the frames whose seq is N or more (those after a warm-up,
+// or after the stereo_matcher's first row verdict).
 // --extrinsics FILE (lines "frame pitch_deg roll_deg height_m") adds the pose
 // error of EXTRINSICS against it. The depth of the kept true positives (z_m at
 // the median stixel, nearest_z_m at the nearest part) is compared with the
@@ -53,6 +55,7 @@ struct Options {
   std::string log, labels, extrinsics;
   EvalParams params;
   bool json = false;
+  int64_t from_seq = 0;
 };
 
 Options parse(int argc, char** argv) {
@@ -69,6 +72,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--max-distance") o.params.max_distance_m = std::stof(value());
     else if (a == "--min-iou") o.params.min_iou = std::stof(value());
     else if (a == "--json") o.json = true;
+    else if (a == "--from-seq") o.from_seq = std::stoll(value());
     else if (a == "--visible") o.params.visible_only = true;
     else if (a == "--difficulty") {
       if (const std::string why = setKittiDifficulty(value(), o.params); !why.empty()) throw std::runtime_error(why);
@@ -141,7 +145,7 @@ int main(int argc, char** argv) {
       surface_normals_t normals;
       extrinsics_t ext;
       if (decodeEvent(*e, det)) {
-        if (seen[det.header.seq]) continue;  // a replayed or duplicated frame counts once
+        if (seen[det.header.seq] || det.header.seq < o.from_seq) continue;  // a replayed or duplicated frame counts once
         seen[det.header.seq] = true;
         stage_ms["validator"].push_back(det.processing_ms);
         const std::string label_path = o.labels + "/" + frameName(det.header.frame_id) + ".txt";

@@ -1,13 +1,14 @@
 // nerv_eval_disparity: score disparity maps against ground truth.
 //
 //   nerv_eval_disparity --data DIR [--algorithm NAME ...] [--config FILE]
-//   nerv_eval_disparity --data DIR --log LOG [--channel DISPARITY]
+//   nerv_eval_disparity --data DIR --log LOG [--channel DISPARITY] [--from-seq N]
 //
 // DIR holds left/, right/ and disp_gt/ (or KITTI image_2/, image_3/, disp_occ_0/,
 // as the synthetic generator writes; same stems). With --algorithm (repeat it
 // to compare; default: the configured or built-in algorithm) each frame is
 // matched here; with --log the DISPARITY events of an LCM log are scored, each
-// against the frame its header.frame_id names. KITTI ground truth (16-bit) is
+// against the frame its header.frame_id names (the whole id, or its last part after a '/', as
+// nerv_source sends "<folder>/<frame>"), each seq once, from seq N on with --from-seq. KITTI ground truth (16-bit) is
 // scored with D1 (|d - gt| > 3 px and > 5 %), Middlebury (8-bit) with bad-2.0;
 // both after the KITTI devkit's background interpolation, with the density of
 // the estimate and "subpx", the mean |d - gt| over its valid pixels within 1 px
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -72,7 +74,7 @@ void printRow(const std::string& label, const Totals& t) {
 int usage(const char* why) {
   std::fprintf(stderr,
                "nerv_eval_disparity: %s\nusage: nerv_eval_disparity --data DIR [--algorithm NAME ...] "
-               "[--config FILE] | --data DIR --log LOG [--channel NAME]\n",
+               "[--config FILE] | --data DIR --log LOG [--channel NAME] [--from-seq N]\n",
                why);
   return 2;
 }
@@ -81,6 +83,7 @@ int usage(const char* why) {
 
 int main(int argc, char** argv) {
   std::string data, log, config_path, channel = "DISPARITY";
+  long long from_seq = 0;
   std::vector<std::string> algorithms;
   for (int i = 1; i < argc; ++i) {
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -90,6 +93,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--config") && (v = value())) config_path = v;
     else if (!std::strcmp(argv[i], "--log") && (v = value())) log = v;
     else if (!std::strcmp(argv[i], "--channel") && (v = value())) channel = v;
+    else if (!std::strcmp(argv[i], "--from-seq") && (v = value())) from_seq = std::atoll(v);
     else return usage((std::string("bad argument '") + argv[i] + "'").c_str());
   }
   if (data.empty()) return usage("--data DIR is required");
@@ -115,6 +119,7 @@ int main(int argc, char** argv) {
     if (!file.good()) return usage(("cannot open log " + log).c_str());
     std::map<std::string, Totals> by_algorithm;
     int undecodable = 0, unknown = 0;
+    std::set<int64_t> scored;  // a replayed or duplicated frame counts once
     while (const lcm::LogEvent* event = file.readNextEvent()) {
       if (event->channel != channel) continue;
       disparity_t msg;
@@ -123,7 +128,9 @@ int main(int argc, char** argv) {
         ++undecodable;
         continue;
       }
-      const auto it = truth.find(msg.header.frame_id);
+      if (msg.header.seq < from_seq || !scored.insert(msg.header.seq).second) continue;
+      auto it = truth.find(msg.header.frame_id);
+      if (it == truth.end()) it = truth.find(msg.header.frame_id.substr(msg.header.frame_id.find_last_of('/') + 1));
       if (it == truth.end() || it->second.first.size() != disparity.size()) {
         ++unknown;
         continue;

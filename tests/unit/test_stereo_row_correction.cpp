@@ -1,0 +1,219 @@
+// The right view resampled by the rows measured off (services/stereo_matcher/row_correction.hpp),
+// and when the rig check sets, keeps, changes and drops that correction (rig_check.hpp).
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rig_check.hpp"
+#include "row_correction.hpp"
+#include "stereo_rig_findings.hpp"
+#include "stereo_scene_texture.hpp"
+
+namespace nerv::stereo {
+namespace {
+
+
+cv::Mat texture(unsigned seed) { return multiScaleTexture(640, 240, seed); }
+
+// The right view of a wall at disparity 20, its content moved down by dy rows and turned by
+// turn_deg about the view's centre (a point at u from the centre moves tan(turn) u down).
+cv::Mat rightView(const cv::Mat& left, double dy, double turn_deg = 0) {
+  const double t = turn_deg * CV_PI / 180, cx = 0.5 * left.cols, cy = 0.5 * left.rows;
+  // right(p) = left(q + 20 columns) with p = R (q - c) + c + (0, dy): the inverse map.
+  const double c = std::cos(t), s = std::sin(t);
+  // q = R^T (p - c - (0, dy)) + c, then + 20 columns.
+  const cv::Mat inverse = (cv::Mat_<double>(2, 3) << c, s, -c * cx - s * (cy + dy) + cx + 20,  //
+                           -s, c, s * cx - c * (cy + dy) + cy);
+  cv::Mat right;
+  cv::warpAffine(left, right, inverse, left.size(), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
+  return right;
+}
+
+// Mean absolute gray difference over the view's middle (away from the borders a shift fills).
+double meanDifference(const cv::Mat& a, const cv::Mat& b) {
+  const cv::Rect inner(40, 30, a.cols - 80, a.rows - 60);
+  cv::Mat d;
+  cv::absdiff(a(inner), b(inner), d);
+  return cv::mean(d)[0];
+}
+
+const cv::Mat kWall(240, 640, CV_32FC1, cv::Scalar(20.0f));
+
+const RigFinding* said(const std::vector<RigFinding>& findings, RigFinding::Kind kind) {
+  for (const RigFinding& f : findings)
+    if (f.kind == kind) return &f;
+  return nullptr;
+}
+
+// One frame as the service runs it: the right view corrected, matched (here: the wall), checked.
+std::vector<RigFinding> frame(RigCheck& rig, const cv::Mat& left, const cv::Mat& right) {
+  const cv::Mat matched = rig.rightToMatch(right);
+  return rig.afterMatching(left, matched, kWall);
+}
+
+TEST(stereoRowCorrection, NoPlaneLeavesTheViewAsItIs) {
+  RowCorrection none;
+  const cv::Mat right = rightView(texture(1), 0);
+  EXPECT_FALSE(none.active());
+  EXPECT_EQ(none.apply(right).data, right.data);  // the same pixels, not a copy
+  none.set({0.5, 0, 0});
+  EXPECT_NE(none.apply(right).data, right.data);
+  none.set({});
+  EXPECT_EQ(none.apply(right).data, right.data);
+}
+
+TEST(stereoRowCorrection, AnOffsetAndATurnAreUndone) {
+  const cv::Mat left = texture(2), aligned = rightView(left, 0);
+  // Against the bilinear resampling's own blur: the aligned view moved by half a row and back.
+  RowCorrection half;
+  half.set({0.5, 0, 0});
+  const double floor = meanDifference(half.apply(rightView(left, 0.5)), aligned);
+  EXPECT_LT(floor, 3.0);
+  for (double dy : {1.0, -1.5, 3.0}) {
+    const cv::Mat moved = rightView(left, dy);
+    RowCorrection fix;
+    fix.set({dy, 0, 0});
+    EXPECT_LT(meanDifference(fix.apply(moved), aligned), floor + 0.5) << dy;
+    EXPECT_GT(meanDifference(moved, aligned), 4 * floor) << dy;
+    RowCorrection wrong;  // the other way doubles it
+    wrong.set({-dy, 0, 0});
+    EXPECT_GT(meanDifference(wrong.apply(moved), aligned), 4 * floor) << dy;
+  }
+  // Turned by 0.3 deg: undone as a rotation, not as rows only.
+  const double turn = 0.3 * CV_PI / 180;
+  const cv::Mat turned = rightView(left, 0, 0.3);
+  RowCorrection rotation, rows_only;
+  rotation.set({0, std::tan(turn), 0});
+  EXPECT_LT(meanDifference(rotation.apply(turned), aligned), floor + 0.5);
+  EXPECT_GT(meanDifference(turned, aligned), 3 * floor);
+  // A vertical scale: the rows of the lower half moved down, of the upper half up.
+  cv::Mat scaled;
+  const cv::Mat stretch = (cv::Mat_<double>(2, 3) << 1, 0, 20, 0, 1.0 / 1.01, 120 - 120 / 1.01);
+  cv::warpAffine(left, scaled, stretch, left.size(), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
+  RowCorrection scale;
+  scale.set({0, 0, 0.01});
+  EXPECT_LT(meanDifference(scale.apply(scaled), aligned), floor + 0.5);
+}
+
+TEST(stereoRowCorrection, LargestOverTheView) {
+  EXPECT_DOUBLE_EQ((RowPlane{0.5, 0, 0}.largestOver({640, 240})), 0.5);
+  EXPECT_DOUBLE_EQ((RowPlane{-0.5, 0.001, -0.002}.largestOver({640, 240})), 0.5 + 0.32 + 0.24);
+  EXPECT_TRUE(RowPlane{}.zero());
+}
+
+// A rig a row off: the first verdict sets the correction, the next 10 frames are checked on the
+// corrected views, and the rig's rows are still an error (it needs a recalibration), but the
+// matcher now sees what is left, a few hundredths of a pixel.
+TEST(stereoRigCheckCorrection, ARowOffIsCorrectedFromTheNextFrameAndStillAnError) {
+  RigCheck rig;
+  const cv::Mat left = texture(3), moved = rightView(left, 1.0), aligned = rightView(left, 0);
+  for (int f = 1; f <= 9; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "row_checks") << f;
+  const std::vector<RigFinding> tenth = frame(rig, left, moved);
+  ASSERT_EQ(findingNames(tenth), "row_checks row_corrections row_misaligned");
+  const std::string& first = said(tenth, RigFinding::Kind::Error)->message;
+  EXPECT_NE(first.find("rectification: the right view's rows lie 1.0"), std::string::npos) << first;
+  EXPECT_NE(first.find("; from the next frame the stereo_matcher resamples its right views by 1.0"), std::string::npos)
+      << first;
+  EXPECT_NE(first.find("(row_correction); recalibrate it"), std::string::npos) << first;
+  EXPECT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);
+  EXPECT_NEAR(findingGauge(tenth, "row_correction_px"), 1.0, 0.1);
+  EXPECT_NEAR(findingGauge(tenth, "row_residual_px"), 1.0, 0.05);  // measured before the correction
+  // The corrected view is the aligned one.
+  EXPECT_LT(meanDifference(rig.rightToMatch(moved), aligned), 3.0);
+  for (int f = 11; f <= 19; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "row_checks") << f;
+  const std::vector<RigFinding> twentieth = frame(rig, left, moved);
+  ASSERT_EQ(findingNames(twentieth), "row_checks row_misaligned");
+  const std::string& second = twentieth[1].message;
+  EXPECT_NE(second.find("the right view's rows lie 1.0"), std::string::npos) << second;
+  EXPECT_NE(second.find("the stereo_matcher resamples its right views (row_correction), which leaves up to 0.0"),
+            std::string::npos)
+      << second;
+  EXPECT_NEAR(findingGauge(twentieth, "row_offset_px"), 1.0, 0.05);  // the rig against its calibration
+  EXPECT_LT(findingGauge(twentieth, "row_residual_px"), 0.1);        // what the matcher sees
+  // Back to every tenth frame; the correction stays.
+  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "") << f;
+  EXPECT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);
+}
+
+TEST(stereoRigCheckCorrection, ATurnIsCorrectedAsATurn) {
+  RigCheck rig;
+  const cv::Mat left = texture(4), turned = rightView(left, 0, 0.2);
+  for (int f = 1; f <= 10; ++f) frame(rig, left, turned);
+  EXPECT_NEAR(std::atan(rig.rowCorrection().slope_x) * 180 / CV_PI, 0.2, 0.01);
+  EXPECT_NEAR(rig.rowCorrection().offset_px, 0.0, 0.1);
+  std::vector<RigFinding> twentieth;
+  for (int f = 11; f <= 20; ++f) twentieth = frame(rig, left, turned);
+  EXPECT_LT(findingGauge(twentieth, "row_residual_px"), 0.1);
+  EXPECT_NEAR(findingGauge(twentieth, "row_turn_deg"), 0.2, 0.01);
+}
+
+// Within row_correction_above_px (0.25) the views are matched as they come, byte for byte.
+TEST(stereoRigCheckCorrection, ASmallOffsetIsLeftAsItIs) {
+  RigCheck rig;
+  const cv::Mat left = texture(5), right = rightView(left, 0.15);
+  for (int f = 1; f <= 30; ++f) {
+    const std::string s = findingNames(frame(rig, left, right));
+    EXPECT_EQ(s.find("row_corrections"), std::string::npos) << f;
+  }
+  EXPECT_FALSE(rig.rowCorrection().offset_px != 0);
+  EXPECT_EQ(rig.rightToMatch(right).data, right.data);
+}
+
+// Mended (recalibrated in place, or knocked back): what is left is the correction the other
+// way, the checks run on every frame, and the verdict drops the correction.
+TEST(stereoRigCheckCorrection, AMendedRigDropsTheCorrection) {
+  RigCheck rig;
+  const cv::Mat left = texture(6), moved = rightView(left, 1.0), aligned = rightView(left, 0);
+  for (int f = 1; f <= 40; ++f) frame(rig, left, moved);
+  ASSERT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);
+  // Frames 41-49 not checked; 50 reads the corrected view a row off the other way.
+  for (int f = 41; f <= 49; ++f) EXPECT_EQ(findingNames(frame(rig, left, aligned)), "") << f;
+  EXPECT_EQ(findingNames(frame(rig, left, aligned)), "row_checks log row_rechecks");
+  for (int f = 51; f <= 58; ++f) EXPECT_EQ(findingNames(frame(rig, left, aligned)), "row_checks") << f;
+  const std::vector<RigFinding> verdict = frame(rig, left, aligned);  // frame 59
+  ASSERT_EQ(findingNames(verdict), "row_checks row_corrections log");
+  EXPECT_NE(verdict[2].message.find(": aligned; the stereo_matcher no longer resamples its right views"),
+            std::string::npos)
+      << verdict[2].message;
+  EXPECT_TRUE(rig.rowCorrection().zero());
+  EXPECT_EQ(rig.rightToMatch(aligned).data, aligned.data);
+  EXPECT_EQ(findingGauge(verdict, "row_correction_px"), 0.0);
+}
+
+// At most max_row_correction_px anywhere in the view: the rest stays what the matcher sees,
+// said as degrading, and the same correction is not set again at every verdict.
+TEST(stereoRigCheckCorrection, TheLargestCorrectionIsHeld) {
+  RigCheckParams p;
+  p.max_row_correction_px = 0.5f;
+  RigCheck rig(p);
+  const cv::Mat left = texture(7), moved = rightView(left, 1.0);
+  for (int f = 1; f <= 10; ++f) frame(rig, left, moved);
+  EXPECT_NEAR(rig.rowCorrection().offset_px, 0.5, 0.02);
+  std::vector<RigFinding> twentieth;
+  for (int f = 11; f <= 20; ++f) twentieth = frame(rig, left, moved);
+  ASSERT_EQ(findingNames(twentieth), "row_checks row_misaligned");
+  EXPECT_NE(twentieth[1].message.find("which leaves up to 0.5"), std::string::npos) << twentieth[1].message;
+  EXPECT_NE(twentieth[1].message.find("; disparity and detections degrade, recalibrate it"), std::string::npos)
+      << twentieth[1].message;
+  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "") << f;  // every tenth frame again
+}
+
+TEST(stereoRigCheckCorrection, OffLeavesEveryViewAsItIs) {
+  RigCheckParams p;
+  p.row_correction = false;
+  RigCheck rig(p);
+  const cv::Mat left = texture(8), moved = rightView(left, 1.0);
+  std::vector<RigFinding> tenth;
+  for (int f = 1; f <= 10; ++f) tenth = frame(rig, left, moved);
+  EXPECT_EQ(findingNames(tenth), "row_checks row_misaligned");
+  EXPECT_TRUE(rig.rowCorrection().zero());
+  EXPECT_EQ(rig.rightToMatch(moved).data, moved.data);
+  EXPECT_TRUE(std::isnan(findingGauge(tenth, "row_residual_px")));
+}
+
+}  // namespace
+}  // namespace nerv::stereo
