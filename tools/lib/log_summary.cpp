@@ -218,7 +218,18 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
     }
     t += "\n";
     t += breakdown.text();
+    // A line per frame for a short run; a long one (a soak: 18007 frames) gets its first and last
+    // ten, and every frame stays in the JSON.
+    constexpr size_t kAllLinesUpTo = 30, kEnds = 10;
+    size_t index = 0;
     for (const auto& [seq, r] : frames) {
+      const size_t i = index++;
+      if (frames.size() > kAllLinesUpTo && i >= kEnds && i < frames.size() - kEnds) {
+        if (i == kEnds)
+          t += "  ... " + std::to_string(frames.size() - 2 * kEnds) +
+               " frames between these, every one in the summary JSON's \"frames\"\n";
+        continue;
+      }
       std::snprintf(buf, sizeof buf,
                     "  %-28s hyp %3d kept %3d  pitch %6.2f deg  height %5.2f m  conf %.2f  ground %s %.2f m",
                     r.frame_id.c_str(), r.hypotheses, r.kept, r.pitch_deg, r.height_m, r.confidence,
