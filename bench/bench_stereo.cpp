@@ -125,11 +125,11 @@ int main(int argc, char** argv) {
               entries[checked].label.c_str(), median(check_ms), every, median(check_ms) / every, offset.offset_px,
               offset.worst_px, std::atan(offset.slope_x) * 180 / CV_PI, offset.points,
               offset.valid ? "" : " (no measurement)");
-  // The row correction (row_correction.hpp) of a rig knocked by that much: its right view resampled
+  // The row correction (view_correction.hpp) of a rig knocked by that much: its right view resampled
   // on every frame before matching, only while a verdict found the rows off.
   {
-    RowCorrection correction;
-    correction.set({0.5, 0.001, 0.0005});
+    ViewCorrection correction;
+    correction.setRows({0.5, 0.001, 0.0005});
     correction.apply(right);  // the maps, built once per correction
     std::vector<double> correct_ms;
     for (int r = 0; r < std::max(runs, 5); ++r) {

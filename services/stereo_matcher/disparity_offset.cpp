@@ -43,13 +43,14 @@ DisparityOffset measureDisparityOffset(const MotionTracks& tracks, double fx, do
   return out;
 }
 
-std::string describeDisparityOffset(const MedianVerdict& offsets) {
-  const float m = offsets.median();
+std::string describeDisparityOffset(const MedianVerdict& offsets, double applied) {
+  const float m = static_cast<float>(offsets.median() + applied);
   char line[200];
   std::snprintf(line, sizeof line,
                 "the disparity reads %.2f px %s than the forward motion says (median of the last %d checks while moving, "
                 "%.2f to %.2f px)",
-                std::abs(m), m >= 0 ? "more" : "less", offsets.samples(), offsets.lowest(), offsets.highest());
+                std::abs(m), m >= 0 ? "more" : "less", offsets.samples(), offsets.lowest() + applied,
+                offsets.highest() + applied);
   return line;
 }
 

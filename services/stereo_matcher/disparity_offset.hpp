@@ -51,7 +51,9 @@ DisparityOffset measureDisparityOffset(const MotionTracks& tracks, double fx, do
                                        const DisparityOffsetParams& params = {});
 
 // One line of a verdict over offsets [px]: "the disparity reads 0.62 px more than the forward
-// motion says (median of the last 10 checks while moving, 0.41 to 0.80 px)".
-std::string describeDisparityOffset(const MedianVerdict& offsets);
+// motion says (median of the last 10 checks while moving, 0.41 to 0.80 px)". applied: the
+// offset the right views were corrected by while the checks read them, added back, so the
+// line is the rig's against its calibration.
+std::string describeDisparityOffset(const MedianVerdict& offsets, double applied = 0);
 
 }  // namespace nerv::stereo

@@ -46,12 +46,16 @@ int serve(ServiceConfig& config) {
   config.section().get("max_row_offset_px", rig_params.max_row_offset_px, 0.05, 100.0);
   config.section().get("max_view_delay_ms", rig_params.max_view_delay_ms, 0.1, 1000.0);
   config.section().get("max_disparity_offset_px", rig_params.max_disparity_offset_px, 0.05, 100.0);
-  // Rows off since calibration are corrected until the rig is recalibrated (row_correction.hpp):
+  // Rows off since calibration are corrected until the rig is recalibrated (view_correction.hpp):
   // the right views resampled by the measured plane once a verdict finds the matched rows off by
   // more than row_correction_above_px; the error row_misaligned still asks for a recalibration.
   config.section().get("row_correction", rig_params.row_correction);
   config.section().get("row_correction_above_px", rig_params.row_correction_above_px, 0.05, 100.0);
   config.section().get("max_row_correction_px", rig_params.max_row_correction_px, 0.0, 100.0);
+  // Likewise a disparity offset beyond max_disparity_offset_px (a camera turned about its
+  // vertical axis): taken off every disparity, at most max_offset_correction_px.
+  config.section().get("offset_correction", rig_params.offset_correction);
+  config.section().get("max_offset_correction_px", rig_params.max_offset_correction_px, 0.0, 100.0);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -113,12 +117,14 @@ int serve(ServiceConfig& config) {
       matched_left = toGray(left);
       matched_right = rig.rightToMatch(toGray(right));
       matcher->compute(matched_left, matched_right, disparity, confidence);
+      rig.correctDisparity(disparity);  // the offset correction, if any
     } else {
       const StereoCamera& cam = rectifier.rectify(raw, toGray(left), toGray(right), left_rect,
                                                   right_rect);
       matched_left = left_rect;
       matched_right = rig.rightToMatch(right_rect);
       matcher->compute(matched_left, matched_right, disparity, confidence);
+      rig.correctDisparity(disparity);
       out.calib.fx = cam.fx;  // the disparity refers to the rectified pair
       out.calib.fy = cam.fy;
       out.calib.cx = cam.cx;

@@ -50,7 +50,7 @@ struct RowOffset {
   float worst_px = 0;     // 90th percentile of the plane's |dy| at the tracked points [px]
   float spread_px = 0;    // 1.4826 x median absolute deviation of the points from the plane [px]
   // What the matcher still sees of it: with a correction applied to the right view
-  // (row_correction.hpp) the plane above is the rig's, the correction plus what is left of
+  // (view_correction.hpp) the plane above is the rig's, the correction plus what is left of
   // it in the corrected view, and this is the 90th percentile of what is left [px]; without
   // one, the same as worst_px.
   float residual_worst_px = 0;

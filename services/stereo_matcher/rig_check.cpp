@@ -53,7 +53,7 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   if (row_burst) --row_burst_left_;
   ++checks_;
   // Measured in the views as matched: with a correction, the rig's rows are it plus what is left.
-  const RowOffset m = measureRowOffset(left, right, disparity, {}, correction_.plane());
+  const RowOffset m = measureRowOffset(left, right, disparity, {}, correction_.rows());
   out.push_back({RigFinding::Kind::Count, m.valid ? "row_checks" : "row_checks_unmeasured", ""});
   // Too few matched points to measure the rows: does one view show nothing, else are the
   // views the right way round? Only then, as a rig that matches needs neither.
@@ -84,7 +84,7 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                    cv::format("rectification check: this frame's rows are up to %.2f px off against the last "
                               "verdict's %.2f px (limit %.2f)%s: checking every frame for the next %d checks",
                               m.residual_worst_px, verdict_worst_, p_.max_row_offset_px,
-                              correction_.active() ? " in the corrected right view" : "", kVerdictChecks)});
+                              !correction_.rows().zero() ? " in the corrected right view" : "", kVerdictChecks)});
     out.push_back({RigFinding::Kind::Count, "row_rechecks", ""});
     rows_.restart();
     row_burst_left_ = kVerdictChecks - 1;
@@ -98,13 +98,13 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   const bool misaligned = rows_.misaligned();  // the rig against its calibration
   verdict_ = median.residual_worst_px > p_.max_row_offset_px ? Verdict::Misaligned : Verdict::Aligned;
   verdict_worst_ = median.residual_worst_px;
-  const bool was_corrected = correction_.active();
+  const bool was_corrected = !correction_.rows().zero();
   const bool changed = correctRows(median, left.size(), out);
   // What the matcher does about it, for the lines below.
   std::string matcher;
-  if (changed && correction_.active())
+  if (changed && !correction_.rows().zero())
     matcher = cv::format("; from the next frame the stereo_matcher resamples its right views by %.2f px at most "
-                         "(row_correction)", correction_.plane().largestOver(left.size()));
+                         "(row_correction)", correction_.rows().largestOver(left.size()));
   else if (changed)
     matcher = "; the stereo_matcher no longer resamples its right views (row_correction)";
   else if (was_corrected)
@@ -112,13 +112,13 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                          "%.2f px",
                          median.residual_worst_px);
   if (misaligned) {
-    const bool corrected = correction_.active() && median.residual_worst_px <= p_.max_row_offset_px;
+    const bool corrected = !correction_.rows().zero() && median.residual_worst_px <= p_.max_row_offset_px;
     out.push_back({RigFinding::Kind::Error, "row_misaligned",
                    "rectification: " + said + ": the rig no longer matches its calibration " +
                        cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) + matcher +
                        (unsynchronised_ ? "; but the views are also taken apart (views_unsynchronised), which moves "
                                           "rows while driving: fix the cameras' trigger before recalibrating"
-                        : corrected || (changed && correction_.active()) ? "; recalibrate it"
+                        : corrected || (changed && !correction_.rows().zero()) ? "; recalibrate it"
                                                                           : "; disparity and detections degrade, "
                                                                             "recalibrate it")});
     worst_said_ = -1.0f;  // back within the limit: said again
@@ -130,7 +130,7 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   out.push_back({RigFinding::Kind::Gauge, "row_turn_deg", "", std::atan(median.slope_x) * 180 / CV_PI});
   if (p_.row_correction) {
     out.push_back({RigFinding::Kind::Gauge, "row_residual_px", "", median.residual_worst_px});
-    out.push_back({RigFinding::Kind::Gauge, "row_correction_px", "", correction_.plane().largestOver(left.size())});
+    out.push_back({RigFinding::Kind::Gauge, "row_correction_px", "", correction_.rows().largestOver(left.size())});
   }
   return out;
 }
@@ -145,13 +145,13 @@ bool RigCheck::correctRows(const RowOffset& median, cv::Size size, std::vector<R
     // Beyond the largest correction, as far as it goes; the rest stays in the error.
     const double largest = target.largestOver(size);
     if (largest > p_.max_row_correction_px) target = target.scaled(p_.max_row_correction_px / largest);
-  } else if (!correction_.active()) {
+  } else if (correction_.rows().zero()) {
     return false;
   }
   // The same correction again (one held at max_row_correction_px): nothing to change or re-check.
-  const RowPlane& now = correction_.plane();
+  const RowPlane& now = correction_.rows();
   if ((target + now.scaled(-1)).largestOver(size) < 0.02) return false;
-  correction_.set(target);
+  correction_.setRows(target);
   out.push_back({RigFinding::Kind::Count, "row_corrections", ""});
   // The next verdict is of the views as corrected, from the next 10 frames.
   rows_.restart();
@@ -196,37 +196,81 @@ void RigCheck::checkAgainstMotion(int previous, const cv::Mat& right, const cv::
   const DisparityOffset offset = measureDisparityOffset(tracks, timing.fx, timing.cx, timing.cy);
   if (!offset.valid) return;
   out.push_back({RigFinding::Kind::Count, "offset_checks", ""});
+  // Read in the disparity as matched: with a correction, the rig's offset is it plus what is left.
   watch(offset_watch_, offsets_, offset.offset_px, "disparity offset", "px", "offset_rechecks", out);
   if (!offsets_.add(offset.offset_px)) return;
-  const float e = offsets_.median();
+  const float left_over = offsets_.median();
+  const double applied = correction_.columns();
+  const float e = static_cast<float>(left_over + applied);  // the rig against its calibration
+  const std::string said = describeDisparityOffset(offsets_, applied);  // before a correction restarts the window
   out.push_back({RigFinding::Kind::Gauge, "disparity_offset_px", "", e});
   // Views taken apart zoom the right one and bend every disparity across the view, and rows
   // off their calibration spoil the matches, both of which the fit reads as an offset too
   // (urban seed 11 10 ms early: -1.2 px; KITTI 0926 a row down: -0.57 px): no verdict on the
   // offset then. The row verdict comes first: its checks start a frame before these.
   if (unsynchronised_ || verdict_ == Verdict::Misaligned) return;
-  offset_watch_.verdict(offsets_.beyond(), e);
-  if (offsets_.beyond()) {
-    // A disparity e too large reads a point at Z as f B / (f B / Z + e): nearer.
-    const double fb = timing.fx * timing.baseline_m, d40 = fb / 40.0;
-    std::string cost = "; every distance is off";
-    if (fb > 0 && d40 + e > 0.05)
-      cost = cv::format("; every distance is off, %.0f %% at 40 m (objects read %s)", 100.0 * std::abs(e) / (d40 + e),
-                        e > 0 ? "nearer" : "farther");
-    else if (fb > 0)
-      cost += ", and nothing at 40 m is measured at all";
+  offset_watch_.verdict(std::abs(left_over) > p_.max_disparity_offset_px, left_over);
+  const bool changed = correctOffset(left_over, e, out);
+  const double now = correction_.columns();
+  if (p_.offset_correction) {
+    out.push_back({RigFinding::Kind::Gauge, "disparity_offset_residual_px", "", left_over});
+    out.push_back({RigFinding::Kind::Gauge, "offset_correction_px", "", now});
+  }
+  // What the matcher does about it: "takes 0.67 px off every disparity", "adds 1.21 px to every disparity".
+  const std::string does = now > 0 ? cv::format("takes %.2f px off every disparity", now)
+                                   : cv::format("adds %.2f px to every disparity", -now);
+  std::string matcher;
+  if (changed && now != 0)
+    matcher = "; from the next frame the stereo_matcher " + does + " (offset_correction)";
+  else if (changed)
+    matcher = "; the stereo_matcher no longer corrects the disparity (offset_correction)";
+  else if (now != 0)
+    matcher = "; the stereo_matcher " + does + cv::format(" (offset_correction), which leaves %.2f px", left_over);
+  if (std::abs(e) > p_.max_disparity_offset_px) {
+    std::string cost;
+    if (now != 0 && (changed || std::abs(left_over) <= p_.max_disparity_offset_px)) {
+      cost = "; distances are corrected to within the check's own bias (about 0.3 px)";
+    } else {
+      // A disparity e too large reads a point at Z as f B / (f B / Z + e): nearer.
+      const double fb = timing.fx * timing.baseline_m, d40 = fb / 40.0;
+      const float seen = now != 0 ? left_over : e;
+      cost = "; every distance is off";
+      if (fb > 0 && d40 + seen > 0.05)
+        cost = cv::format("; every distance is off, %.0f %% at 40 m (objects read %s)",
+                          100.0 * std::abs(seen) / (d40 + seen), seen > 0 ? "nearer" : "farther");
+      else if (fb > 0)
+        cost += ", and nothing at 40 m is measured at all";
+    }
     out.push_back({RigFinding::Kind::Error, "disparity_offset",
-                   "disparity: " + describeDisparityOffset(offsets_) +
+                   "disparity: " + said +
                        cv::format(" (max_disparity_offset_px %.2f): a camera turned about its vertical axis since "
                                   "calibration, or the principal points moved",
                                   p_.max_disparity_offset_px) +
-                       cost + "; recalibrate the rig"});
+                       matcher + cost + "; recalibrate the rig"});
     offset_said_ = 1e9f;
-  } else if (std::abs(e - offset_said_) >= 0.1f) {
-    out.push_back({RigFinding::Kind::Log, "", "disparity offset check: " + describeDisparityOffset(offsets_) +
-                                                  ": within the limit"});
+  } else if (changed || std::abs(e - offset_said_) >= 0.1f) {
+    out.push_back({RigFinding::Kind::Log, "", "disparity offset check: " + said + ": within the limit" + matcher});
     offset_said_ = e;
   }
+}
+
+bool RigCheck::correctOffset(float left_over, float e, std::vector<RigFinding>& out) {
+  // What the matcher sees within the limit: the correction (or none) stays. Beyond it, the
+  // rig's offset is corrected while it is beyond the limit, and the correction dropped once the
+  // rig is back within it (mended, or knocked back).
+  if (!p_.offset_correction || std::abs(left_over) <= p_.max_disparity_offset_px) return false;
+  double target = 0;
+  if (std::abs(e) > p_.max_disparity_offset_px)
+    target = std::clamp(static_cast<double>(e), -static_cast<double>(p_.max_offset_correction_px),
+                        static_cast<double>(p_.max_offset_correction_px));
+  if (std::abs(target - correction_.columns()) < 0.05) return false;  // the same again (held at the maximum)
+  correction_.setColumns(target);
+  out.push_back({RigFinding::Kind::Count, "offset_corrections", ""});
+  // The next verdict is of the disparity as corrected, from the next frames, each checked.
+  offsets_.restart();
+  offset_watch_.verdict(false, 0);
+  check_next_ = std::max(check_next_, kVerdictChecks);
+  return true;
 }
 
 void RigCheck::watch(ChangeWatch& watch, MedianVerdict& window, float reading, const char* what, const char* unit,

@@ -12,9 +12,10 @@
 // checks run on every frame until a verdict of those readings alone (change_watch.hpp), 11-20
 // frames after a trigger lost or a camera turned mid-drive. A row verdict that finds the
 // matched views' rows off by more than row_correction_above_px sets the correction the right
-// views are resampled with from the next frame on (row_correction.hpp) and checks the next
-// 10 frames; the rows are then said against the calibration (the correction plus what is
-// left), so the error that asks for a recalibration stays. The service reports what comes
+// views are resampled with from the next frame on (view_correction.hpp) and checks the next
+// 10 frames; an offset verdict beyond its limit likewise has the offset taken off every
+// disparity. Both are then said against the calibration (the correction plus what is left),
+// so the errors that ask for a recalibration stay. The service reports what comes
 // back: counters, errors and log lines; this keeps no transport and is tested on its own.
 #pragma once
 
@@ -27,7 +28,7 @@
 #include "disparity_offset.hpp"
 #include "frozen_view.hpp"
 #include "rectification_check.hpp"
-#include "row_correction.hpp"
+#include "view_correction.hpp"
 #include "shutter_sync.hpp"
 
 #include <cstdint>
@@ -38,13 +39,15 @@ struct RigCheckParams {
   int check_every = 10;         // frames between row checks after the first ones; 0 = no row checks
   int first_checks = 10;        // checks on each of the first frames, so the first verdict comes early
   float max_row_offset_px = 0.4f;
-  bool row_correction = true;            // resample the right views by the rows measured off (row_correction.hpp)
+  bool row_correction = true;            // resample the right views by the rows measured off (view_correction.hpp)
   float row_correction_above_px = 0.25f;  // ... once what the matcher sees of them is beyond this where it matches
   float max_row_correction_px = 5.0f;     // at most this far anywhere in the view (the rest stays an error)
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
   float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error
   float max_disparity_offset_px = 0.6f;  // every disparity off by more than this either way: an error
+  bool offset_correction = true;          // ... and taken off every disparity (view_correction.hpp)
+  float max_offset_correction_px = 3.0f;  // by at most this much
 };
 
 // What the checks against the vehicle's motion need of a matched pair besides its views: when
@@ -71,7 +74,10 @@ class RigCheck {
   // The right view to match (8-bit gray): as it is, or resampled by the row correction the
   // verdicts so far have set (valid until the next call).
   const cv::Mat& rightToMatch(const cv::Mat& right) { return correction_.apply(right); }
-  const RowPlane& rowCorrection() const { return correction_.plane(); }
+  // The matcher's disparity (CV_32F) with the offset correction the verdicts have set taken off.
+  void correctDisparity(cv::Mat& disparity) const { correction_.correctDisparity(disparity); }
+  const RowPlane& rowCorrection() const { return correction_.rows(); }
+  double offsetCorrection() const { return correction_.columns(); }
   // Every matched pair: the gray views the matcher saw and its disparity (CV_32F).
   std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,
                                         const PairTiming& timing = {});
@@ -79,6 +85,8 @@ class RigCheck {
  private:
   // At a row verdict: sets, changes or drops the correction; true when it changed.
   bool correctRows(const RowOffset& median, cv::Size size, std::vector<RigFinding>& out);
+  // At an offset verdict: sets, changes or drops the columns' correction; true when it changed.
+  bool correctOffset(float left_over, float e, std::vector<RigFinding>& out);
   void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,
                           std::vector<RigFinding>& out);
   // A motion reading against its last verdict: the next frame checked too, or the window forgotten
@@ -89,7 +97,7 @@ class RigCheck {
   RigCheckParams p_;
   FrozenViewCheck frozen_;
   RowOffsetMonitor rows_;
-  RowCorrection correction_;
+  ViewCorrection correction_;
   long long frames_ = 0, checks_ = 0;
   // An aligned verdict is logged the first time, after an error, and whenever the rows moved
   // by 0.1 px or more since the last such line, so a drift shows before it is an error.

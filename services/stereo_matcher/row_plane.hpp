@@ -1,7 +1,7 @@
 // The rows of a stereo rig's right view against its left's, as a plane over the view:
 // dy = a + b (x - W/2) + c (y - H/2), +1 = the right view's content one row lower. What the
 // row check measures (rectification_check.hpp) and what the correction undoes
-// (row_correction.hpp).
+// (view_correction.hpp).
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -63,6 +63,7 @@ TEST(stereoDisparityOffset, VerdictWording) {
 TEST(stereoDisparityOffset, RigCheckSaysWhenEveryDisparityIsOff) {
   RigCheckParams every;
   every.check_every = 1;
+  every.offset_correction = false;  // the error's own words (corrected: test_stereo_offset_correction.cpp)
   for (const double shift : {0.0, 1.0}) {
     RigCheck rig(every);
     std::string said;

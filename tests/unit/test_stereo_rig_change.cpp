@@ -84,6 +84,7 @@ TEST(stereoRigChange, ViewsComingApartMidDriveAreSaidTwentyFramesLater) {
 TEST(stereoRigChange, ACameraTurnedMidDriveIsSaidTwentyFramesLater) {
   RigCheckParams params;
   params.first_checks = 11;
+  params.offset_correction = false;  // the error's own words (corrected: test_stereo_offset_correction.cpp)
   Drive d(params, "offset_rechecks");
   EXPECT_EQ(driveWithAChange(d, 0, 1.0, "offset_checks", "disparity_offset", "disparity offset"), 30) << d.said;
   EXPECT_NE(d.said.find("objects read nearer"), std::string::npos) << d.said;

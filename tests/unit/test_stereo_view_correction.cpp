@@ -1,5 +1,6 @@
-// The right view resampled by the rows measured off (services/stereo_matcher/row_correction.hpp),
-// and when the rig check sets, keeps, changes and drops that correction (rig_check.hpp).
+// The right view resampled by the rows measured off and the disparity offset taken off
+// (services/stereo_matcher/view_correction.hpp), and when the rig check sets, keeps, changes and
+// drops the rows' correction (rig_check.hpp; the offset's: test_stereo_offset_correction.cpp).
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
@@ -9,7 +10,7 @@
 #include <vector>
 
 #include "rig_check.hpp"
-#include "row_correction.hpp"
+#include "view_correction.hpp"
 #include "stereo_rig_findings.hpp"
 #include "stereo_scene_texture.hpp"
 
@@ -55,51 +56,74 @@ std::vector<RigFinding> frame(RigCheck& rig, const cv::Mat& left, const cv::Mat&
   return rig.afterMatching(left, matched, kWall);
 }
 
-TEST(stereoRowCorrection, NoPlaneLeavesTheViewAsItIs) {
-  RowCorrection none;
+TEST(stereoViewCorrection, NoPlaneLeavesTheViewAsItIs) {
+  ViewCorrection none;
   const cv::Mat right = rightView(texture(1), 0);
   EXPECT_FALSE(none.active());
   EXPECT_EQ(none.apply(right).data, right.data);  // the same pixels, not a copy
-  none.set({0.5, 0, 0});
+  none.setRows({0.5, 0, 0});
   EXPECT_NE(none.apply(right).data, right.data);
-  none.set({});
+  none.setRows({});
   EXPECT_EQ(none.apply(right).data, right.data);
 }
 
-TEST(stereoRowCorrection, AnOffsetAndATurnAreUndone) {
+TEST(stereoViewCorrection, AnOffsetAndATurnAreUndone) {
   const cv::Mat left = texture(2), aligned = rightView(left, 0);
   // Against the bilinear resampling's own blur: the aligned view moved by half a row and back.
-  RowCorrection half;
-  half.set({0.5, 0, 0});
+  ViewCorrection half;
+  half.setRows({0.5, 0, 0});
   const double floor = meanDifference(half.apply(rightView(left, 0.5)), aligned);
   EXPECT_LT(floor, 3.0);
   for (double dy : {1.0, -1.5, 3.0}) {
     const cv::Mat moved = rightView(left, dy);
-    RowCorrection fix;
-    fix.set({dy, 0, 0});
+    ViewCorrection fix;
+    fix.setRows({dy, 0, 0});
     EXPECT_LT(meanDifference(fix.apply(moved), aligned), floor + 0.5) << dy;
     EXPECT_GT(meanDifference(moved, aligned), 4 * floor) << dy;
-    RowCorrection wrong;  // the other way doubles it
-    wrong.set({-dy, 0, 0});
+    ViewCorrection wrong;  // the other way doubles it
+    wrong.setRows({-dy, 0, 0});
     EXPECT_GT(meanDifference(wrong.apply(moved), aligned), 4 * floor) << dy;
   }
   // Turned by 0.3 deg: undone as a rotation, not as rows only.
   const double turn = 0.3 * CV_PI / 180;
   const cv::Mat turned = rightView(left, 0, 0.3);
-  RowCorrection rotation, rows_only;
-  rotation.set({0, std::tan(turn), 0});
+  ViewCorrection rotation, rows_only;
+  rotation.setRows({0, std::tan(turn), 0});
   EXPECT_LT(meanDifference(rotation.apply(turned), aligned), floor + 0.5);
   EXPECT_GT(meanDifference(turned, aligned), 3 * floor);
   // A vertical scale: the rows of the lower half moved down, of the upper half up.
   cv::Mat scaled;
   const cv::Mat stretch = (cv::Mat_<double>(2, 3) << 1, 0, 20, 0, 1.0 / 1.01, 120 - 120 / 1.01);
   cv::warpAffine(left, scaled, stretch, left.size(), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
-  RowCorrection scale;
-  scale.set({0, 0, 0.01});
+  ViewCorrection scale;
+  scale.setRows({0, 0, 0.01});
   EXPECT_LT(meanDifference(scale.apply(scaled), aligned), floor + 0.5);
 }
 
-TEST(stereoRowCorrection, LargestOverTheView) {
+TEST(stereoViewCorrection, TheOffsetComesOffEveryValidDisparity) {
+  ViewCorrection c;
+  cv::Mat d = (cv::Mat_<float>(1, 5) << 10.0f, 0.5f, 0.0f, -1.0f, 1.25f);
+  const cv::Mat as_matched = d.clone();
+  c.correctDisparity(d);  // none set: unchanged
+  EXPECT_EQ(cv::norm(d, as_matched, cv::NORM_INF), 0.0);
+  c.setColumns(0.75);
+  EXPECT_TRUE(c.active());
+  const cv::Mat right = texture(9);
+  EXPECT_EQ(c.apply(right).data, right.data);  // the offset alone resamples nothing
+  c.correctDisparity(d);
+  EXPECT_FLOAT_EQ(d.at<float>(0), 9.25f);
+  EXPECT_FLOAT_EQ(d.at<float>(1), 0.0f);  // beyond the horizon once corrected: invalid
+  EXPECT_FLOAT_EQ(d.at<float>(2), 0.0f);  // invalid stays invalid
+  EXPECT_FLOAT_EQ(d.at<float>(3), -1.0f);
+  EXPECT_FLOAT_EQ(d.at<float>(4), 0.5f);
+  c.setColumns(-1.5);  // read too small: added
+  cv::Mat e = as_matched.clone();
+  c.correctDisparity(e);
+  EXPECT_FLOAT_EQ(e.at<float>(0), 11.5f);
+  EXPECT_FLOAT_EQ(e.at<float>(2), 0.0f);
+}
+
+TEST(stereoViewCorrection, LargestOverTheView) {
   EXPECT_DOUBLE_EQ((RowPlane{0.5, 0, 0}.largestOver({640, 240})), 0.5);
   EXPECT_DOUBLE_EQ((RowPlane{-0.5, 0.001, -0.002}.largestOver({640, 240})), 0.5 + 0.32 + 0.24);
   EXPECT_TRUE(RowPlane{}.zero());

@@ -1,4 +1,4 @@
-#include "row_correction.hpp"
+#include "view_correction.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -7,12 +7,24 @@
 
 namespace nerv::stereo {
 
-void RowCorrection::set(const RowPlane& plane) {
+void ViewCorrection::setRows(const RowPlane& plane) {
   plane_ = plane;
   size_ = cv::Size();  // the maps are built anew on the next view
 }
 
-const cv::Mat& RowCorrection::apply(const cv::Mat& right) {
+void ViewCorrection::setColumns(double offset_px) { columns_px_ = offset_px; }
+
+void ViewCorrection::correctDisparity(cv::Mat& disparity) const {
+  if (columns_px_ == 0 || disparity.type() != CV_32FC1) return;
+  const float e = static_cast<float>(columns_px_);
+  for (int y = 0; y < disparity.rows; ++y) {
+    float* d = disparity.ptr<float>(y);
+    // A point whose disparity was all offset lies beyond the horizon: unmeasured, as the matcher says it.
+    for (int x = 0; x < disparity.cols; ++x) d[x] = d[x] > 0 ? std::max(d[x] - e, 0.0f) : d[x];
+  }
+}
+
+const cv::Mat& ViewCorrection::apply(const cv::Mat& right) {
   if (plane_.zero()) return right;
   if (right.size() != size_) {
     size_ = right.size();
