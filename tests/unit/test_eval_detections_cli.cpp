@@ -2,7 +2,6 @@
 // errors and the misses by cause come out as computed by hand (the tool behind
 // `tools/nerv eval detections`).
 #include <gtest/gtest.h>
-#include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_run.hpp"
+#include "lcm_test_log.hpp"
 #include "nerv/detections_t.hpp"
 
 namespace fs = std::filesystem;
@@ -17,10 +18,7 @@ using namespace nerv;
 
 namespace {
 
-// build/tests/test_eval_detections_cli -> build/bin/nerv_eval_detections
-fs::path cliPath() {
-  return fs::canonical("/proc/self/exe").parent_path().parent_path() / "bin" / "nerv_eval_detections";
-}
+fs::path cliPath() { return test::cliPath("nerv_eval_detections"); }
 
 detection_t detection(int x, int y, int w, int h, bool kept, float z, float nearest) {
   detection_t d{};
@@ -34,23 +32,8 @@ detection_t detection(int x, int y, int w, int h, bool kept, float z, float near
   return d;
 }
 
-// Runs of spaces as one, so the checks do not depend on column widths.
-std::string squeeze(const std::string& s) {
-  std::string out;
-  for (char c : s)
-    if (c != ' ' || out.empty() || out.back() != ' ') out += c;
-  return out;
-}
-
-std::string run(const std::string& cmd) {
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-    pclose(p);
-  }
-  return out;
-}
+std::string squeeze(const std::string& s) { return test::squeezeSpaces(s); }
+std::string run(const std::string& cmd) { return test::runCli(cmd); }
 
 // DETECTIONS of frame "synthetic/<seq, 6 digits>".
 detections_t frame(int seq, std::vector<detection_t> detections) {
@@ -63,22 +46,9 @@ detections_t frame(int seq, std::vector<detection_t> detections) {
   return f;
 }
 
-void writeLog(const fs::path& path, const std::vector<detections_t>& frames) {
-  lcm::LogFile log(path.string(), "w");
-  ASSERT_TRUE(log.good());
-  for (size_t i = 0; i < frames.size(); ++i) {
-    detections_t msg = frames[i];
-    msg.num_detections = static_cast<int32_t>(msg.detections.size());
-    std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
-    msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
-    lcm::LogEvent e{};
-    e.eventnum = static_cast<int64_t>(i);
-    e.timestamp = static_cast<int64_t>(i) + 1;
-    e.channel = "DETECTIONS";
-    e.datalen = static_cast<int32_t>(buf.size());
-    e.data = buf.data();
-    log.writeEvent(&e);
-  }
+void writeLog(const fs::path& path, std::vector<detections_t> frames) {
+  for (detections_t& f : frames) f.num_detections = static_cast<int32_t>(f.detections.size());
+  ASSERT_TRUE(test::writeLcmLog(path.string(), "DETECTIONS", frames));
 }
 
 // A temporary folder with labels/ and run.lcmlog, and the command line reading them.
@@ -215,4 +185,19 @@ TEST_F(toolsEvalDetectionsCli, DifficultyIgnoresLowAndHiddenObjectsAndLowBoxes) 
   // An unknown difficulty is a one-line error naming it.
   EXPECT_NE(run(base() + " --difficulty medium 2>&1; echo rc=$?").find("unknown difficulty 'medium' (easy, moderate or hard)"),
             std::string::npos);
+}
+
+// --from-seq N: only the frames from seq N on are scored.
+TEST_F(toolsEvalDetectionsCli, FromSeqScoresTheLaterFramesOnly) {
+  for (const char* name : {"000001.txt", "000002.txt"})
+    std::ofstream(tmp / "labels" / name) << "Car 0.00 0 -1.57 100.00 100.00 199.00 179.00 1.50 1.80 4.00 0.00 1.65 "
+                                            "20.00 -1.5708\n";
+  // Frame 1 misses the car, frame 2 finds it.
+  writeLog(tmp / "run.lcmlog", {frame(1, {}), frame(2, {detection(100, 100, 100, 80, true, 20, 19.8f)})});
+  const std::string all = squeeze(run(base() + " 2>&1"));
+  EXPECT_NE(all.find("frames evaluated: 2"), std::string::npos) << all;
+  EXPECT_NE(all.find("stixel + SNV 2 1 0 1 1.000 0.500"), std::string::npos) << all;
+  const std::string later = squeeze(run(base() + " --from-seq 2 2>&1"));
+  EXPECT_NE(later.find("frames evaluated: 1"), std::string::npos) << later;
+  EXPECT_NE(later.find("stixel + SNV 1 1 0 0 1.000 1.000"), std::string::npos) << later;
 }
