@@ -40,6 +40,7 @@
 #include "json_writer.hpp"
 #include "log_decode.hpp"
 #include "miss_causes.hpp"
+#include "frame_name.hpp"
 #include "percentile.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
@@ -89,8 +90,6 @@ Options parse(int argc, char** argv) {
   if (!std::filesystem::is_directory(o.labels)) throw std::runtime_error("label folder " + o.labels + " does not exist");
   return o;
 }
-
-std::string frameName(const std::string& frame_id) { return frame_id.substr(frame_id.find_last_of('/') + 1); }
 
 struct TruePose { float pitch = 0, roll = 0, height = 0; };
 

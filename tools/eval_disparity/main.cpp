@@ -31,6 +31,7 @@
 #include "pipeline_keys.hpp"
 #include "rig_check.hpp"
 #include "disparity_metrics.hpp"
+#include "frame_name.hpp"
 #include "message_convert.hpp"
 #include "stereo_matcher.hpp"
 
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
       }
       if (msg.header.seq < from_seq || !scored.insert(msg.header.seq).second) continue;
       auto it = truth.find(msg.header.frame_id);
-      if (it == truth.end()) it = truth.find(msg.header.frame_id.substr(msg.header.frame_id.find_last_of('/') + 1));
+      if (it == truth.end()) it = truth.find(frameName(msg.header.frame_id));
       if (it == truth.end() || it->second.first.size() != disparity.size()) {
         ++unknown;
         continue;

@@ -15,6 +15,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "frame_name.hpp"
 #include "json_writer.hpp"
 #include "log_decode.hpp"
 #include "log_summary.hpp"
@@ -117,8 +118,7 @@ int exportDisparity(const std::string& path, const std::string& dir) {
       continue;
     }
     disparity.convertTo(fixed, CV_16U, 256.0);  // KITTI: d * 256, 0 = invalid
-    std::string name = msg.header.frame_id;
-    name = name.substr(name.find_last_of('/') + 1);
+    std::string name = frameName(msg.header.frame_id);
     if (name.empty()) name = std::to_string(msg.header.seq);
     char prefix[32];
     std::snprintf(prefix, sizeof prefix, "%06lld_", (long long)msg.header.seq);

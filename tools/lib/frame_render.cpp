@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "frame_name.hpp"
 #include "kitti_labels.hpp"
 #include "mjpeg_avi.hpp"
 
@@ -14,8 +15,7 @@ namespace nerv::viz {
 
 std::string labelFileFor(const std::string& labels_dir, const std::string& frame_id) {
   if (labels_dir.empty() || frame_id.empty()) return {};
-  const std::string name = frame_id.substr(frame_id.find_last_of('/') + 1);
-  const std::string path = labels_dir + "/" + name + ".txt";
+  const std::string path = labels_dir + "/" + frameName(frame_id) + ".txt";
   return std::filesystem::exists(path) ? path : std::string();
 }
 

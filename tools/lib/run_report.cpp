@@ -15,6 +15,7 @@
 #include "distance_accuracy.hpp"
 #include "frame_evaluation.hpp"
 #include "frame_grid.hpp"
+#include "frame_name.hpp"
 #include "frame_render.hpp"
 #include "html_report.hpp"
 #include "kitti_labels.hpp"
@@ -180,7 +181,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
         r.stage_ms["validator"] = f.detections->processing_ms;
         if (f.detections_log_utime >= 0) r.latency_ms = (f.detections_log_utime - f.detections->header.utime) / 1000.0;
       }
-      const std::string name = f.frame_id.substr(f.frame_id.find_last_of('/') + 1);
+      const std::string name = frameName(f.frame_id);
       try {
         if (auto it = true_poses.find(std::stol(name)); it != true_poses.end()) {
           r.truth_pitch = it->second.pitch;
