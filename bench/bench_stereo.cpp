@@ -112,17 +112,22 @@ int main(int argc, char** argv) {
   size_t checked = entries.size() - 1;
   for (size_t i = 0; i < entries.size(); ++i)
     if (entries[i].label == "nerv_sgm") checked = i;
-  std::vector<double> check_ms;
+  // The median wall time of body(r) over max(runs, 5) runs [ms].
+  const auto median_ms = [&](auto&& body) {
+    std::vector<double> t;
+    for (int r = 0; r < std::max(runs, 5); ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      body(r);
+      t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return median(t);
+  };
   RowOffset offset;
-  for (int r = 0; r < std::max(runs, 5); ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    offset = measureRowOffset(left, right, disparities[checked]);
-    check_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-  }
+  const double check_ms = median_ms([&](int) { offset = measureRowOffset(left, right, disparities[checked]); });
   const int every = RigCheckParams{}.check_every;
   std::printf("rectification check on %s's disparity: %.2f ms (every %dth frame by default: %.2f ms a frame); "
               "rows %+.2f px at the centre, up to %.2f px off, turned %.3f deg, from %d points%s\n",
-              entries[checked].label.c_str(), median(check_ms), every, median(check_ms) / every, offset.offset_px,
+              entries[checked].label.c_str(), check_ms, every, check_ms / every, offset.offset_px,
               offset.worst_px, std::atan(offset.slope_x) * 180 / CV_PI, offset.points,
               offset.valid ? "" : " (no measurement)");
   // The row correction (view_correction.hpp) of a rig knocked by that much: its right view resampled
@@ -131,38 +136,28 @@ int main(int argc, char** argv) {
     ViewCorrection correction;
     correction.setRows({0.5, 0.001, 0.0005});
     correction.apply(right);  // the maps, built once per correction
-    std::vector<double> correct_ms;
-    for (int r = 0; r < std::max(runs, 5); ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      correction.apply(right);
-      correct_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::printf("row correction (only on a rig whose rows are off): %.2f ms a frame\n", median(correct_ms));
-    // The offset correction: the offset taken off every disparity, on a copy of the matcher's.
+    std::printf("row correction (only on a rig whose rows are off): %.2f ms a frame\n",
+                median_ms([&](int) { correction.apply(right); }));
+    // The offset correction: the offset taken off every disparity, each run on its own copy of the matcher's.
     ViewCorrection offset;
     offset.setColumns(0.5);
-    std::vector<double> offset_ms;
-    for (int r = 0; r < std::max(runs, 5); ++r) {
-      cv::Mat d = disparities[checked].clone();
-      const auto t0 = std::chrono::steady_clock::now();
-      offset.correctDisparity(d);
-      offset_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::printf("offset correction (only on a rig whose disparity is offset): %.2f ms a frame\n", median(offset_ms));
+    std::vector<cv::Mat> copies(static_cast<size_t>(std::max(runs, 5)));
+    for (cv::Mat& d : copies) d = disparities[checked].clone();
+    std::printf("offset correction (only on a rig whose disparity is offset): %.2f ms a frame\n",
+                median_ms([&](int r) { offset.correctDisparity(copies[static_cast<size_t>(r)]); }));
   }
   // The checks against the vehicle's motion (shutter_sync.hpp, disparity_offset.hpp) on the same
   // frames: one pair has no earlier frame, so the left view stands in for it. That costs the
   // same tracking and fits, and reads nothing (no motion).
-  std::vector<double> motion_ms;
-  for (int r = 0; r < std::max(runs, 5); ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+  bool read_something = false;
+  const double motion_ms = median_ms([&](int) {
     const MotionTracks tracks = trackMotion(left, left, disparities[checked]);
     const ShutterSync sync = measureShutterSync(tracks, left, right, 721.5, left.cols / 2.0, left.rows / 2.0);
     const DisparityOffset shift = measureDisparityOffset(tracks, 721.5, left.cols / 2.0, left.rows / 2.0);
-    motion_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    if (sync.valid || shift.valid) std::printf("motion checks: a reading without motion\n");
-  }
+    read_something = read_something || sync.valid || shift.valid;
+  });
+  if (read_something) std::printf("motion checks: a reading without motion\n");
   std::printf("checks against the motion (shutters, disparity offset) on the same frames: %.2f ms (%.2f ms a frame)\n",
-              median(motion_ms), median(motion_ms) / every);
+              motion_ms, motion_ms / every);
   return 0;
 }

@@ -100,9 +100,10 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   verdict_worst_ = median.residual_worst_px;
   const bool was_corrected = !correction_.rows().zero();
   const bool changed = correctRows(median, left.size(), out);
+  const bool correcting = !correction_.rows().zero();  // from the next frame on
   // What the matcher does about it, for the lines below.
   std::string matcher;
-  if (changed && !correction_.rows().zero())
+  if (changed && correcting)
     matcher = cv::format("; from the next frame the stereo_matcher resamples its right views by %.2f px at most "
                          "(row_correction)", correction_.rows().largestOver(left.size()));
   else if (changed)
@@ -112,15 +113,15 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
                          "%.2f px",
                          median.residual_worst_px);
   if (misaligned) {
-    const bool corrected = !correction_.rows().zero() && median.residual_worst_px <= p_.max_row_offset_px;
+    // Corrected from the next frame on, or what is left within the limit: the matcher is fine.
+    const bool corrected = correcting && (changed || median.residual_worst_px <= p_.max_row_offset_px);
+    std::string advice = corrected ? "; recalibrate it" : "; disparity and detections degrade, recalibrate it";
+    if (unsynchronised_)
+      advice = "; but the views are also taken apart (views_unsynchronised), which moves rows while driving: fix the "
+               "cameras' trigger before recalibrating";
     out.push_back({RigFinding::Kind::Error, "row_misaligned",
                    "rectification: " + said + ": the rig no longer matches its calibration " +
-                       cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) + matcher +
-                       (unsynchronised_ ? "; but the views are also taken apart (views_unsynchronised), which moves "
-                                          "rows while driving: fix the cameras' trigger before recalibrating"
-                        : corrected || (changed && !correction_.rows().zero()) ? "; recalibrate it"
-                                                                          : "; disparity and detections degrade, "
-                                                                            "recalibrate it")});
+                       cv::format("(max_row_offset_px %.2f)", p_.max_row_offset_px) + matcher + advice});
     worst_said_ = -1.0f;  // back within the limit: said again
   } else if (changed || worst_said_ < 0 || std::abs(median.worst_px - worst_said_) >= 0.1f) {
     out.push_back({RigFinding::Kind::Log, "", "rectification check: " + said + ": aligned" + matcher});

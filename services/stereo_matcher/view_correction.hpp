@@ -31,7 +31,6 @@ class ViewCorrection {
   void setColumns(double offset_px);
   const RowPlane& rows() const { return plane_; }
   double columns() const { return columns_px_; }
-  bool active() const { return !plane_.zero() || columns_px_ != 0; }
   // right: an 8-bit gray view. Returns it as it is while no correction is set, else the
   // corrected view (valid until the next call). The maps are built once per correction and size.
   const cv::Mat& apply(const cv::Mat& right);

@@ -59,7 +59,8 @@ std::vector<RigFinding> frame(RigCheck& rig, const cv::Mat& left, const cv::Mat&
 TEST(stereoViewCorrection, NoPlaneLeavesTheViewAsItIs) {
   ViewCorrection none;
   const cv::Mat right = rightView(texture(1), 0);
-  EXPECT_FALSE(none.active());
+  EXPECT_TRUE(none.rows().zero());
+  EXPECT_EQ(none.columns(), 0.0);
   EXPECT_EQ(none.apply(right).data, right.data);  // the same pixels, not a copy
   none.setRows({0.5, 0, 0});
   EXPECT_NE(none.apply(right).data, right.data);
@@ -107,7 +108,7 @@ TEST(stereoViewCorrection, TheOffsetComesOffEveryValidDisparity) {
   c.correctDisparity(d);  // none set: unchanged
   EXPECT_EQ(cv::norm(d, as_matched, cv::NORM_INF), 0.0);
   c.setColumns(0.75);
-  EXPECT_TRUE(c.active());
+  EXPECT_EQ(c.columns(), 0.75);
   const cv::Mat right = texture(9);
   EXPECT_EQ(c.apply(right).data, right.data);  // the offset alone resamples nothing
   c.correctDisparity(d);
