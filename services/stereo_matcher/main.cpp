@@ -117,14 +117,12 @@ int serve(ServiceConfig& config) {
       matched_left = toGray(left);
       matched_right = rig.rightToMatch(toGray(right));
       matcher->compute(matched_left, matched_right, disparity, confidence);
-      rig.correctDisparity(disparity);  // the offset correction, if any
     } else {
       const StereoCamera& cam = rectifier.rectify(raw, toGray(left), toGray(right), left_rect,
                                                   right_rect);
       matched_left = left_rect;
       matched_right = rig.rightToMatch(right_rect);
       matcher->compute(matched_left, matched_right, disparity, confidence);
-      rig.correctDisparity(disparity);
       out.calib.fx = cam.fx;  // the disparity refers to the rectified pair
       out.calib.fy = cam.fy;
       out.calib.cx = cam.cx;
@@ -132,6 +130,7 @@ int serve(ServiceConfig& config) {
       out.calib.baseline_m = cam.baseline_m;
       out.calib.rectified = true;
     }
+    rig.correctDisparity(disparity);  // the offset correction, if one is set
     // Something nearer than the main search reaches, filled by the near field: worth a
     // count in NERV_HEALTH (near_field_frames), as it is rare and safety-relevant.
     if (matcher->nearFieldPixels() > 0) node.count("near_field_frames");
