@@ -17,6 +17,10 @@ YAML::Node loadConfigFile(const std::string& path) {
   } catch (const YAML::Exception& e) {
     throw ConfigError("config file " + path + ": " + e.msg + " at line " +
                       std::to_string(e.mark.line + 1));
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {  // the stream's own, e.g. a folder given as the file
+    throw ConfigError("config file " + path + " cannot be read: " + e.what());
   }
 }
 

@@ -7,7 +7,7 @@ const std::vector<std::string>& serviceOnlyKeys(const std::string& service) {
                                                    "row_check_every_frames", "max_row_offset_px",
                                                    "row_correction", "row_correction_above_px",
                                                    "max_row_correction_px", "offset_correction",
-                                                   "max_offset_correction_px",
+                                                   "max_offset_correction_px", "rig_state_file",
                                                    "max_view_delay_ms", "max_disparity_offset_px"};
   static const std::vector<std::string> stixel = {"shard", "queue", "min_prior_confidence", "max_prior_age_frames",
                                                   "max_prior_age_ms", "max_unobserved_fraction"};

@@ -5,10 +5,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <vector>
 
 #include "message_convert.hpp"
 #include "rectification.hpp"
 #include "rig_check.hpp"
+#include "rig_state.hpp"
 #include "service_config.hpp"
 #include "stereo_matcher.hpp"
 
@@ -21,6 +24,25 @@ cv::Mat toGray(const cv::Mat& image) {
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   return gray;
+}
+
+// The calibration the rig's corrections are kept for (rig_state.hpp): FNV-1a over every field
+// the frames carry, as encoded, and the ones a person reads.
+stereo::RigCalibration rigCalibration(const stereo_calibration_t& calib) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(calib.getEncodedSize()));
+  calib.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  uint64_t h = 14695981039346656037ull;
+  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  return {h, calib.width, calib.height, calib.fx, calib.cx, calib.cy, calib.baseline_m, calib.rectified != 0};
+}
+
+std::string nowUtc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
 }
 
 int serve(ServiceConfig& config) {
@@ -56,6 +78,10 @@ int serve(ServiceConfig& config) {
   // vertical axis): taken off every disparity, at most max_offset_correction_px.
   config.section().get("offset_correction", rig_params.offset_correction);
   config.section().get("max_offset_correction_px", rig_params.max_offset_correction_px, 0.0, 100.0);
+  // Both corrections kept across restarts in this file (rig_state.hpp; "" = not kept): restored
+  // from the first frame of the same calibration instead of measured again from the 11th / 21st.
+  std::string rig_state_file;
+  config.section().get("rig_state_file", rig_state_file);
   config.finish();
 
   Node node(config.nodeOptions());
@@ -64,6 +90,7 @@ int serve(ServiceConfig& config) {
   cv::Mat left, right, left_rect, right_rect, disparity, confidence;
   cv::Mat matched_left, matched_right;  // the gray views the matcher saw
   stereo::RigCheck rig(rig_params);
+  stereo::RigStateKeeper rig_state(rig_state_file);
   const auto report = [&](const std::vector<stereo::RigFinding>& findings, const std::string& prefix) {
     for (const stereo::RigFinding& f : findings) {
       if (f.kind == stereo::RigFinding::Kind::Count) node.count(f.name);
@@ -107,6 +134,9 @@ int serve(ServiceConfig& config) {
         left.rows != frame.calib.height)
       return node.error("size_mismatch", what + "decoded images do not match the calibration size");
     node.countIn();
+    const stereo::RigCalibration rig_calibration =
+        rig_state.enabled() ? rigCalibration(frame.calib) : stereo::RigCalibration{};
+    report(rig_state.beforeMatching(rig_calibration, rig), "");  // the first frame: corrections restored
     report(rig.beforeMatching(left, right), what);  // the frame is matched whatever it says
 
     const auto start = std::chrono::steady_clock::now();
@@ -147,6 +177,7 @@ int serve(ServiceConfig& config) {
     report(rig.afterMatching(matched_left, matched_right, disparity,
                              {frame.header.utime, out.calib.fx, out.calib.cx, out.calib.cy, out.calib.baseline_m}),
            what);
+    report(rig_state.afterMatching(rig_calibration, rig, nowUtc()), what);  // a changed correction kept
   }, queue);
   return node.spin();
 }

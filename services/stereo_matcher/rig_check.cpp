@@ -136,6 +136,17 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   return out;
 }
 
+bool RigCheck::restore(const RowPlane& rows, double offset_px, cv::Size size) {
+  if (p_.row_correction && !rows.zero()) {
+    const double largest = rows.largestOver(size);
+    correction_.setRows(largest > p_.max_row_correction_px ? rows.scaled(p_.max_row_correction_px / largest) : rows);
+  }
+  if (p_.offset_correction && offset_px != 0)
+    correction_.setColumns(std::clamp(offset_px, -static_cast<double>(p_.max_offset_correction_px),
+                                      static_cast<double>(p_.max_offset_correction_px)));
+  return !correction_.rows().zero() || correction_.columns() != 0;
+}
+
 bool RigCheck::correctRows(const RowOffset& median, cv::Size size, std::vector<RigFinding>& out) {
   // Not while the views are taken apart: driving moves their rows then, not the rig.
   if (!p_.row_correction || unsynchronised_) return false;

@@ -77,6 +77,10 @@ class RigCheck {
   // The matcher's disparity (CV_32F) with the offset correction the verdicts have set taken off.
   void correctDisparity(cv::Mat& disparity) const { correction_.correctDisparity(disparity); }
   const RowPlane& rowCorrection() const { return correction_.rows(); }
+  // Corrections of an earlier run for the same calibration (rig_state.hpp), applied from the
+  // next pair on as far as this configuration corrects (row_correction, offset_correction, their
+  // largest); the first verdicts keep, change or drop them as any other. True when any was set.
+  bool restore(const RowPlane& rows, double offset_px, cv::Size size);
   double offsetCorrection() const { return correction_.columns(); }
   // Every matched pair: the gray views the matcher saw and its disparity (CV_32F).
   std::vector<RigFinding> afterMatching(const cv::Mat& left, const cv::Mat& right, const cv::Mat& disparity,

@@ -61,6 +61,18 @@ synthetic_sequence() {  # synthetic_sequence SCENE FRAMES -> prints the folder
   echo "$dir"
 }
 
+kitti_or_synthetic() {  # the KITTI 0926 frames, or the synthetic urban sequence when ../shared/data is absent
+  local d="$NERV_ROOT/../shared/data/kitti_raw_0926_seq"
+  if [[ -d "$d" ]]; then echo "$d"; else synthetic_sequence urban 11; fi
+}
+
+run_pipeline() {  # run_pipeline NAME DATA [ARGS...]: tools/nerv run of DATA into $tmp/NAME, its output in $tmp/NAME.txt
+  local name="$1" data="$2"
+  shift 2
+  "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/$name" "$@" >"$tmp/$name.txt" 2>&1 \
+    || fail "$name: nerv run exited with $?: $(tail -n 3 "$tmp/$name.txt")"
+}
+
 no_survivors() {  # no process of this build left running
   ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "lcm-logger --lcm-url=$URL" >/dev/null
 }

@@ -32,13 +32,9 @@ enter_private_bus "$@"
 tmp=$(mktemp -d)
 trap 'stop_children; rm -rf "$tmp"' EXIT
 
-data="$NERV_ROOT/../shared/data/kitti_raw_0926_seq"
-[[ -d "$data" ]] || data=$(synthetic_sequence urban 11)
+data=$(kitti_or_synthetic)
 
-run() {  # run NAME DATA: 2 x the sequence at 10 Hz through the four services, default config
-  "$NERV_ROOT/tools/nerv" run --data "$2" --repeat 2 --rate 10 --out "$tmp/$1" \
-    >"$tmp/$1.txt" 2>&1 || fail "$1: nerv run exited with $?: $(tail -n 3 "$tmp/$1.txt")"
-}
+run() { run_pipeline "$1" "$2" --repeat 2 --rate 10; }  # run NAME DATA: 2 x the sequence at 10 Hz, default config
 matcher_errors() {  # matcher_errors NAME: the stereo_matcher's error count in summary.json
   tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"errors":[0-9]*' | cut -d: -f2
 }

@@ -80,4 +80,7 @@ TEST(commonConfig, NestedSectionsCheckTheirOwnKeys) {
 
 TEST(commonConfig, MissingFileIsAnError) {
   EXPECT_NE(errorOf([] { loadConfigFile("/nonexistent/pipeline.yaml"); }).find("cannot be read"), std::string::npos);
+  // A folder opens as a stream and fails on reading: named as the file that cannot be read.
+  const std::string folder = errorOf([] { loadConfigFile("/tmp"); });
+  EXPECT_NE(folder.find("config file /tmp cannot be read: "), std::string::npos) << folder;
 }

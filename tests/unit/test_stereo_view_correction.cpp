@@ -12,37 +12,10 @@
 #include "rig_check.hpp"
 #include "view_correction.hpp"
 #include "stereo_rig_findings.hpp"
-#include "stereo_scene_texture.hpp"
+#include "stereo_moved_view.hpp"
 
 namespace nerv::stereo {
 namespace {
-
-
-cv::Mat texture(unsigned seed) { return multiScaleTexture(640, 240, seed); }
-
-// The right view of a wall at disparity 20, its content moved down by dy rows and turned by
-// turn_deg about the view's centre (a point at u from the centre moves tan(turn) u down).
-cv::Mat rightView(const cv::Mat& left, double dy, double turn_deg = 0) {
-  const double t = turn_deg * CV_PI / 180, cx = 0.5 * left.cols, cy = 0.5 * left.rows;
-  // right(p) = left(q + 20 columns) with p = R (q - c) + c + (0, dy): the inverse map.
-  const double c = std::cos(t), s = std::sin(t);
-  // q = R^T (p - c - (0, dy)) + c, then + 20 columns.
-  const cv::Mat inverse = (cv::Mat_<double>(2, 3) << c, s, -c * cx - s * (cy + dy) + cx + 20,  //
-                           -s, c, s * cx - c * (cy + dy) + cy);
-  cv::Mat right;
-  cv::warpAffine(left, right, inverse, left.size(), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
-  return right;
-}
-
-// Mean absolute gray difference over the view's middle (away from the borders a shift fills).
-double meanDifference(const cv::Mat& a, const cv::Mat& b) {
-  const cv::Rect inner(40, 30, a.cols - 80, a.rows - 60);
-  cv::Mat d;
-  cv::absdiff(a(inner), b(inner), d);
-  return cv::mean(d)[0];
-}
-
-const cv::Mat kWall(240, 640, CV_32FC1, cv::Scalar(20.0f));
 
 const RigFinding* said(const std::vector<RigFinding>& findings, RigFinding::Kind kind) {
   for (const RigFinding& f : findings)
@@ -50,15 +23,9 @@ const RigFinding* said(const std::vector<RigFinding>& findings, RigFinding::Kind
   return nullptr;
 }
 
-// One frame as the service runs it: the right view corrected, matched (here: the wall), checked.
-std::vector<RigFinding> frame(RigCheck& rig, const cv::Mat& left, const cv::Mat& right) {
-  const cv::Mat matched = rig.rightToMatch(right);
-  return rig.afterMatching(left, matched, kWall);
-}
-
 TEST(stereoViewCorrection, NoPlaneLeavesTheViewAsItIs) {
   ViewCorrection none;
-  const cv::Mat right = rightView(texture(1), 0);
+  const cv::Mat right = movedRightView(wallTexture(1), 0);
   EXPECT_TRUE(none.rows().zero());
   EXPECT_EQ(none.columns(), 0.0);
   EXPECT_EQ(none.apply(right).data, right.data);  // the same pixels, not a copy
@@ -69,36 +36,36 @@ TEST(stereoViewCorrection, NoPlaneLeavesTheViewAsItIs) {
 }
 
 TEST(stereoViewCorrection, AnOffsetAndATurnAreUndone) {
-  const cv::Mat left = texture(2), aligned = rightView(left, 0);
+  const cv::Mat left = wallTexture(2), aligned = movedRightView(left, 0);
   // Against the bilinear resampling's own blur: the aligned view moved by half a row and back.
   ViewCorrection half;
   half.setRows({0.5, 0, 0});
-  const double floor = meanDifference(half.apply(rightView(left, 0.5)), aligned);
+  const double floor = meanViewDifference(half.apply(movedRightView(left, 0.5)), aligned);
   EXPECT_LT(floor, 3.0);
   for (double dy : {1.0, -1.5, 3.0}) {
-    const cv::Mat moved = rightView(left, dy);
+    const cv::Mat moved = movedRightView(left, dy);
     ViewCorrection fix;
     fix.setRows({dy, 0, 0});
-    EXPECT_LT(meanDifference(fix.apply(moved), aligned), floor + 0.5) << dy;
-    EXPECT_GT(meanDifference(moved, aligned), 4 * floor) << dy;
+    EXPECT_LT(meanViewDifference(fix.apply(moved), aligned), floor + 0.5) << dy;
+    EXPECT_GT(meanViewDifference(moved, aligned), 4 * floor) << dy;
     ViewCorrection wrong;  // the other way doubles it
     wrong.setRows({-dy, 0, 0});
-    EXPECT_GT(meanDifference(wrong.apply(moved), aligned), 4 * floor) << dy;
+    EXPECT_GT(meanViewDifference(wrong.apply(moved), aligned), 4 * floor) << dy;
   }
   // Turned by 0.3 deg: undone as a rotation, not as rows only.
   const double turn = 0.3 * CV_PI / 180;
-  const cv::Mat turned = rightView(left, 0, 0.3);
+  const cv::Mat turned = movedRightView(left, 0, 0.3);
   ViewCorrection rotation, rows_only;
   rotation.setRows({0, std::tan(turn), 0});
-  EXPECT_LT(meanDifference(rotation.apply(turned), aligned), floor + 0.5);
-  EXPECT_GT(meanDifference(turned, aligned), 3 * floor);
+  EXPECT_LT(meanViewDifference(rotation.apply(turned), aligned), floor + 0.5);
+  EXPECT_GT(meanViewDifference(turned, aligned), 3 * floor);
   // A vertical scale: the rows of the lower half moved down, of the upper half up.
   cv::Mat scaled;
   const cv::Mat stretch = (cv::Mat_<double>(2, 3) << 1, 0, 20, 0, 1.0 / 1.01, 120 - 120 / 1.01);
   cv::warpAffine(left, scaled, stretch, left.size(), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
   ViewCorrection scale;
   scale.setRows({0, 0, 0.01});
-  EXPECT_LT(meanDifference(scale.apply(scaled), aligned), floor + 0.5);
+  EXPECT_LT(meanViewDifference(scale.apply(scaled), aligned), floor + 0.5);
 }
 
 TEST(stereoViewCorrection, TheOffsetComesOffEveryValidDisparity) {
@@ -109,7 +76,7 @@ TEST(stereoViewCorrection, TheOffsetComesOffEveryValidDisparity) {
   EXPECT_EQ(cv::norm(d, as_matched, cv::NORM_INF), 0.0);
   c.setColumns(0.75);
   EXPECT_EQ(c.columns(), 0.75);
-  const cv::Mat right = texture(9);
+  const cv::Mat right = wallTexture(9);
   EXPECT_EQ(c.apply(right).data, right.data);  // the offset alone resamples nothing
   c.correctDisparity(d);
   EXPECT_FLOAT_EQ(d.at<float>(0), 9.25f);
@@ -135,9 +102,9 @@ TEST(stereoViewCorrection, LargestOverTheView) {
 // matcher now sees what is left, a few hundredths of a pixel.
 TEST(stereoRigCheckCorrection, ARowOffIsCorrectedFromTheNextFrameAndStillAnError) {
   RigCheck rig;
-  const cv::Mat left = texture(3), moved = rightView(left, 1.0), aligned = rightView(left, 0);
-  for (int f = 1; f <= 9; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "row_checks") << f;
-  const std::vector<RigFinding> tenth = frame(rig, left, moved);
+  const cv::Mat left = wallTexture(3), moved = movedRightView(left, 1.0), aligned = movedRightView(left, 0);
+  for (int f = 1; f <= 9; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, moved)), "row_checks") << f;
+  const std::vector<RigFinding> tenth = wallFrame(rig, left, moved);
   ASSERT_EQ(findingNames(tenth), "row_checks row_corrections row_misaligned");
   const std::string& first = said(tenth, RigFinding::Kind::Error)->message;
   EXPECT_NE(first.find("rectification: the right view's rows lie 1.0"), std::string::npos) << first;
@@ -148,9 +115,9 @@ TEST(stereoRigCheckCorrection, ARowOffIsCorrectedFromTheNextFrameAndStillAnError
   EXPECT_NEAR(findingGauge(tenth, "row_correction_px"), 1.0, 0.1);
   EXPECT_NEAR(findingGauge(tenth, "row_residual_px"), 1.0, 0.05);  // measured before the correction
   // The corrected view is the aligned one.
-  EXPECT_LT(meanDifference(rig.rightToMatch(moved), aligned), 3.0);
-  for (int f = 11; f <= 19; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "row_checks") << f;
-  const std::vector<RigFinding> twentieth = frame(rig, left, moved);
+  EXPECT_LT(meanViewDifference(rig.rightToMatch(moved), aligned), 3.0);
+  for (int f = 11; f <= 19; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, moved)), "row_checks") << f;
+  const std::vector<RigFinding> twentieth = wallFrame(rig, left, moved);
   ASSERT_EQ(findingNames(twentieth), "row_checks row_misaligned");
   const std::string& second = twentieth[1].message;
   EXPECT_NE(second.find("the right view's rows lie 1.0"), std::string::npos) << second;
@@ -160,18 +127,18 @@ TEST(stereoRigCheckCorrection, ARowOffIsCorrectedFromTheNextFrameAndStillAnError
   EXPECT_NEAR(findingGauge(twentieth, "row_offset_px"), 1.0, 0.05);  // the rig against its calibration
   EXPECT_LT(findingGauge(twentieth, "row_residual_px"), 0.1);        // what the matcher sees
   // Back to every tenth frame; the correction stays.
-  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "") << f;
+  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, moved)), "") << f;
   EXPECT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);
 }
 
 TEST(stereoRigCheckCorrection, ATurnIsCorrectedAsATurn) {
   RigCheck rig;
-  const cv::Mat left = texture(4), turned = rightView(left, 0, 0.2);
-  for (int f = 1; f <= 10; ++f) frame(rig, left, turned);
+  const cv::Mat left = wallTexture(4), turned = movedRightView(left, 0, 0.2);
+  for (int f = 1; f <= 10; ++f) wallFrame(rig, left, turned);
   EXPECT_NEAR(std::atan(rig.rowCorrection().slope_x) * 180 / CV_PI, 0.2, 0.01);
   EXPECT_NEAR(rig.rowCorrection().offset_px, 0.0, 0.1);
   std::vector<RigFinding> twentieth;
-  for (int f = 11; f <= 20; ++f) twentieth = frame(rig, left, turned);
+  for (int f = 11; f <= 20; ++f) twentieth = wallFrame(rig, left, turned);
   EXPECT_LT(findingGauge(twentieth, "row_residual_px"), 0.1);
   EXPECT_NEAR(findingGauge(twentieth, "row_turn_deg"), 0.2, 0.01);
 }
@@ -179,9 +146,9 @@ TEST(stereoRigCheckCorrection, ATurnIsCorrectedAsATurn) {
 // Within row_correction_above_px (0.25) the views are matched as they come, byte for byte.
 TEST(stereoRigCheckCorrection, ASmallOffsetIsLeftAsItIs) {
   RigCheck rig;
-  const cv::Mat left = texture(5), right = rightView(left, 0.15);
+  const cv::Mat left = wallTexture(5), right = movedRightView(left, 0.15);
   for (int f = 1; f <= 30; ++f) {
-    const std::string s = findingNames(frame(rig, left, right));
+    const std::string s = findingNames(wallFrame(rig, left, right));
     EXPECT_EQ(s.find("row_corrections"), std::string::npos) << f;
   }
   EXPECT_FALSE(rig.rowCorrection().offset_px != 0);
@@ -192,14 +159,14 @@ TEST(stereoRigCheckCorrection, ASmallOffsetIsLeftAsItIs) {
 // way, the checks run on every frame, and the verdict drops the correction.
 TEST(stereoRigCheckCorrection, AMendedRigDropsTheCorrection) {
   RigCheck rig;
-  const cv::Mat left = texture(6), moved = rightView(left, 1.0), aligned = rightView(left, 0);
-  for (int f = 1; f <= 40; ++f) frame(rig, left, moved);
+  const cv::Mat left = wallTexture(6), moved = movedRightView(left, 1.0), aligned = movedRightView(left, 0);
+  for (int f = 1; f <= 40; ++f) wallFrame(rig, left, moved);
   ASSERT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);
   // Frames 41-49 not checked; 50 reads the corrected view a row off the other way.
-  for (int f = 41; f <= 49; ++f) EXPECT_EQ(findingNames(frame(rig, left, aligned)), "") << f;
-  EXPECT_EQ(findingNames(frame(rig, left, aligned)), "row_checks log row_rechecks");
-  for (int f = 51; f <= 58; ++f) EXPECT_EQ(findingNames(frame(rig, left, aligned)), "row_checks") << f;
-  const std::vector<RigFinding> verdict = frame(rig, left, aligned);  // frame 59
+  for (int f = 41; f <= 49; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, aligned)), "") << f;
+  EXPECT_EQ(findingNames(wallFrame(rig, left, aligned)), "row_checks log row_rechecks");
+  for (int f = 51; f <= 58; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, aligned)), "row_checks") << f;
+  const std::vector<RigFinding> verdict = wallFrame(rig, left, aligned);  // frame 59
   ASSERT_EQ(findingNames(verdict), "row_checks row_corrections log");
   EXPECT_NE(verdict[2].message.find(": aligned; the stereo_matcher no longer resamples its right views"),
             std::string::npos)
@@ -215,25 +182,25 @@ TEST(stereoRigCheckCorrection, TheLargestCorrectionIsHeld) {
   RigCheckParams p;
   p.max_row_correction_px = 0.5f;
   RigCheck rig(p);
-  const cv::Mat left = texture(7), moved = rightView(left, 1.0);
-  for (int f = 1; f <= 10; ++f) frame(rig, left, moved);
+  const cv::Mat left = wallTexture(7), moved = movedRightView(left, 1.0);
+  for (int f = 1; f <= 10; ++f) wallFrame(rig, left, moved);
   EXPECT_NEAR(rig.rowCorrection().offset_px, 0.5, 0.02);
   std::vector<RigFinding> twentieth;
-  for (int f = 11; f <= 20; ++f) twentieth = frame(rig, left, moved);
+  for (int f = 11; f <= 20; ++f) twentieth = wallFrame(rig, left, moved);
   ASSERT_EQ(findingNames(twentieth), "row_checks row_misaligned");
   EXPECT_NE(twentieth[1].message.find("which leaves up to 0.5"), std::string::npos) << twentieth[1].message;
   EXPECT_NE(twentieth[1].message.find("; disparity and detections degrade, recalibrate it"), std::string::npos)
       << twentieth[1].message;
-  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(frame(rig, left, moved)), "") << f;  // every tenth frame again
+  for (int f = 21; f <= 29; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, moved)), "") << f;  // every tenth frame again
 }
 
 TEST(stereoRigCheckCorrection, OffLeavesEveryViewAsItIs) {
   RigCheckParams p;
   p.row_correction = false;
   RigCheck rig(p);
-  const cv::Mat left = texture(8), moved = rightView(left, 1.0);
+  const cv::Mat left = wallTexture(8), moved = movedRightView(left, 1.0);
   std::vector<RigFinding> tenth;
-  for (int f = 1; f <= 10; ++f) tenth = frame(rig, left, moved);
+  for (int f = 1; f <= 10; ++f) tenth = wallFrame(rig, left, moved);
   EXPECT_EQ(findingNames(tenth), "row_checks row_misaligned");
   EXPECT_TRUE(rig.rowCorrection().zero());
   EXPECT_EQ(rig.rightToMatch(moved).data, moved.data);
