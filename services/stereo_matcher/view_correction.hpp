@@ -19,12 +19,15 @@
 
 #include <opencv2/core.hpp>
 
+#include "plane_resampler.hpp"
 #include "row_plane.hpp"
 
 namespace nerv::stereo {
 
 class ViewCorrection {
  public:
+  enum class Interpolation { Lanczos, Linear };
+  explicit ViewCorrection(Interpolation interpolation = Interpolation::Lanczos) : interpolation_(interpolation) {}
   // The rows the right views are corrected by from now on (zero: none).
   void setRows(const RowPlane& plane);
   // The disparity offset taken off every disparity from now on [px] (0: none).
@@ -32,13 +35,16 @@ class ViewCorrection {
   const RowPlane& rows() const { return plane_; }
   double columns() const { return columns_px_; }
   // right: an 8-bit gray view. Returns it as it is while no correction is set, else the
-  // corrected view (valid until the next call). The maps are built once per correction and size.
+  // corrected view (valid until the next call): Lanczos (plane_resampler.hpp), or bilinear. The
+  // maps are built once per correction and size.
   const cv::Mat& apply(const cv::Mat& right);
   // disparity: the matcher's CV_32F result (<= 0 invalid), corrected in place: e taken off every
   // valid disparity; one left at 0 or below by it is invalid (beyond the horizon).
   void correctDisparity(cv::Mat& disparity) const;
 
  private:
+  Interpolation interpolation_;
+  PlaneResampler lanczos_;
   RowPlane plane_;
   double columns_px_ = 0;
   cv::Size size_;
