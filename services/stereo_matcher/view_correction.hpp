@@ -10,7 +10,9 @@
 //
 // the offset a and the vertical scale c as rows only, the turn b as the rotation about the
 // view's centre that it is (a camera turned by b radians about its axis moves a point b u
-// down and b v left), bilinear, the border replicated; and takes e off every disparity it
+// down and b v left), with a Lanczos kernel (plane_resampler.hpp: bilinear reads at fractional
+// rows blurred the view, F1 0.80-0.85 on KITTI 0926 against 0.83-0.87) or, as configured,
+// bilinear, the border replicated; and takes e off every disparity it
 // matched (the same as moving the right view's content e to the right, without resampling
 // it: on KITTI 0926 the resampled view's blur cost 0.02-0.04 of F1 that this does not).
 // Nothing to correct leaves the view and the disparity as they are, byte for byte. When to
