@@ -6,7 +6,7 @@ const std::vector<std::string>& serviceOnlyKeys(const std::string& service) {
   static const std::vector<std::string> matcher = {"shard",          "queue", "output_encoding", "publish_confidence",
                                                    "row_check_every_frames", "max_row_offset_px",
                                                    "row_correction", "row_correction_above_px",
-                                                   "max_row_correction_px", "row_correction_interpolation", "offset_correction",
+                                                   "max_row_correction_px", "offset_correction",
                                                    "max_offset_correction_px", "rig_state_file",
                                                    "max_view_delay_ms", "max_disparity_offset_px"};
   static const std::vector<std::string> stixel = {"shard", "queue", "min_prior_confidence", "max_prior_age_frames",

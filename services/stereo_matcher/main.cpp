@@ -74,9 +74,6 @@ int serve(ServiceConfig& config) {
   config.section().get("row_correction", rig_params.row_correction);
   config.section().get("row_correction_above_px", rig_params.row_correction_above_px, 0.05, 100.0);
   config.section().get("max_row_correction_px", rig_params.max_row_correction_px, 0.0, 100.0);
-  std::string interpolation = "lanczos";  // docs/stereo.md "A sharper resampling"
-  config.section().get("row_correction_interpolation", interpolation, {"lanczos", "linear"});
-  rig_params.row_correction_lanczos = interpolation == "lanczos";
   // Likewise a disparity offset beyond max_disparity_offset_px (a camera turned about its
   // vertical axis): taken off every disparity, at most max_offset_correction_px.
   config.section().get("offset_correction", rig_params.offset_correction);

@@ -16,8 +16,6 @@ RigCheck::RigCheck(const RigCheckParams& params)
     : p_(params),
       frozen_(params.frozen_after),
       rows_(kVerdictChecks, params.max_row_offset_px),
-      correction_(params.row_correction_lanczos ? ViewCorrection::Interpolation::Lanczos
-                                                : ViewCorrection::Interpolation::Linear),
       delays_(kVerdictChecks, params.max_view_delay_ms),
       offsets_(kVerdictChecks, params.max_disparity_offset_px) {}
 

@@ -42,7 +42,6 @@ struct RigCheckParams {
   bool row_correction = true;            // resample the right views by the rows measured off (view_correction.hpp)
   float row_correction_above_px = 0.25f;  // ... once what the matcher sees of them is beyond this where it matches
   float max_row_correction_px = 5.0f;     // at most this far anywhere in the view (the rest stays an error)
-  bool row_correction_lanczos = true;     // resampled with a Lanczos kernel (plane_resampler.hpp), else bilinear
   int frozen_after = 3;         // pairs in a row with one view repeated before it is said
   int faults_in_a_row = 2;      // blank or swapped views: checks in a row before it is said
   float max_view_delay_ms = 2.0f;  // the right view taken more than this before or after the left: an error

@@ -26,13 +26,6 @@ void ViewCorrection::correctDisparity(cv::Mat& disparity) const {
 
 const cv::Mat& ViewCorrection::apply(const cv::Mat& right) {
   if (plane_.zero()) return right;
-  if (interpolation_ == Interpolation::Lanczos) {
-    if (right.size() != size_) {
-      size_ = right.size();
-      lanczos_.set(plane_, size_);
-    }
-    return lanczos_.apply(right);
-  }
   if (right.size() != size_) {
     size_ = right.size();
     cv::Mat map(size_, CV_32FC2);

@@ -10,9 +10,7 @@
 //
 // the offset a and the vertical scale c as rows only, the turn b as the rotation about the
 // view's centre that it is (a camera turned by b radians about its axis moves a point b u
-// down and b v left), with a Lanczos kernel (plane_resampler.hpp: bilinear reads at fractional
-// rows blurred the view, F1 0.80-0.85 on KITTI 0926 against 0.83-0.87) or, as configured,
-// bilinear, the border replicated; and takes e off every disparity it
+// down and b v left), bilinear, the border replicated; and takes e off every disparity it
 // matched (the same as moving the right view's content e to the right, without resampling
 // it: on KITTI 0926 the resampled view's blur cost 0.02-0.04 of F1 that this does not).
 // Nothing to correct leaves the view and the disparity as they are, byte for byte. When to
@@ -21,15 +19,12 @@
 
 #include <opencv2/core.hpp>
 
-#include "plane_resampler.hpp"
 #include "row_plane.hpp"
 
 namespace nerv::stereo {
 
 class ViewCorrection {
  public:
-  enum class Interpolation { Lanczos, Linear };
-  explicit ViewCorrection(Interpolation interpolation = Interpolation::Lanczos) : interpolation_(interpolation) {}
   // The rows the right views are corrected by from now on (zero: none).
   void setRows(const RowPlane& plane);
   // The disparity offset taken off every disparity from now on [px] (0: none).
@@ -37,16 +32,13 @@ class ViewCorrection {
   const RowPlane& rows() const { return plane_; }
   double columns() const { return columns_px_; }
   // right: an 8-bit gray view. Returns it as it is while no correction is set, else the
-  // corrected view (valid until the next call): Lanczos (plane_resampler.hpp), or bilinear. The
-  // maps are built once per correction and size.
+  // corrected view (valid until the next call). The maps are built once per correction and size.
   const cv::Mat& apply(const cv::Mat& right);
   // disparity: the matcher's CV_32F result (<= 0 invalid), corrected in place: e taken off every
   // valid disparity; one left at 0 or below by it is invalid (beyond the horizon).
   void correctDisparity(cv::Mat& disparity) const;
 
  private:
-  Interpolation interpolation_;
-  PlaneResampler lanczos_;
   RowPlane plane_;
   double columns_px_ = 0;
   cv::Size size_;

@@ -68,7 +68,7 @@ const std::map<std::string, std::string> kValues = {
     {"shard", "{count: 1, index: 0}"},   {"queue", "3"},
     {"output_encoding", "png16"},       {"publish_confidence", "false"},
     {"row_check_every_frames", "5"},   {"max_row_offset_px", "0.3"},
-    {"row_correction", "false"},        {"row_correction_above_px", "0.3"}, {"max_row_correction_px", "2"}, {"row_correction_interpolation", "linear"},
+    {"row_correction", "false"},        {"row_correction_above_px", "0.3"}, {"max_row_correction_px", "2"},
     {"offset_correction", "false"},     {"max_offset_correction_px", "2"}, {"max_view_delay_ms", "3"}, {"max_disparity_offset_px", "0.4"},
     {"rig_state_file", "/tmp/nerv_rig_state_unused.yaml"},
     {"min_prior_confidence", "0.4"},    {"max_prior_age_frames", "20"},

@@ -8,13 +8,15 @@
 // "Does one view show nothing?").
 //
 //   nerv_misalign --data DIR --out DIR [--rows PX] [--cols PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right]
-//                 [--frames N] [--from-frame K]
+//                 [--frames N] [--from-frame K] [--interpolation linear|lanczos]
 //
 // Writes the plain layout: OUT/left (the left views as they are), OUT/right (turned by DEG
 // about the principal point, positive = clockwise as seen from behind the camera, so points
 // right of it move down; then moved by PX rows, positive = down, and by --cols PX columns to the
-// left, so that every disparity grows by PX (negative: shrinks); bilinear, the pixels moved in
-// from outside repeat the border; --swap then writes each view as the other, as a rig with its
+// left, so that every disparity grows by PX (negative: shrinks); bilinear, or with
+// --interpolation lanczos OpenCV's 8 x 8 Lanczos kernel (the view keeps its fine texture, as a
+// camera that moved does; bilinear blurs it at fractional shifts, docs/stereo.md "A sharper
+// resampling"), the pixels moved in from outside repeat the border; --swap then writes each view as the other, as a rig with its
 // cables or topics crossed delivers them; --freeze-right K repeats the right view of the K-th
 // frame (from 0) in every later frame, as a stopped camera or driver delivers it; --blank-right
 // replaces the right views by a fogged lens's: blurred to nothing, sigma 8 px; --from-frame K
@@ -41,7 +43,7 @@ namespace fs = std::filesystem;
 namespace {
 
 int usage(const char* why) {
-  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--cols PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right] [--frames N] [--from-frame K]\n", why);
+  std::fprintf(stderr, "nerv_misalign: %s\nusage: nerv_misalign --data DIR --out DIR [--rows PX] [--cols PX] [--roll-deg DEG] [--swap] [--freeze-right K] [--blank-right] [--frames N] [--from-frame K] [--interpolation linear|lanczos]\n", why);
   return 2;
 }
 
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
   double rows = 0, cols = 0, roll_deg = 0;
   int max_frames = -1, freeze_right = -1, from_frame = 0;
   bool swap = false, blank_right = false;
+  int interpolation = cv::INTER_LINEAR;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--swap" || a == "--blank-right") {
@@ -78,6 +81,9 @@ int main(int argc, char** argv) {
     else if (a == "--frames") max_frames = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else if (a == "--from-frame") from_frame = static_cast<int>(std::strtol(v.c_str(), &end, 10));
     else if (a == "--freeze-right") freeze_right = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+    else if (a == "--interpolation" && (v == "linear" || v == "lanczos"))
+      interpolation = v == "lanczos" ? cv::INTER_LANCZOS4 : cv::INTER_LINEAR;
+    else if (a == "--interpolation") return usage(("--interpolation must be linear or lanczos, not " + v).c_str());
     else return usage(("unknown argument " + a).c_str());
     if (end && *end) return usage(("not a number: " + a + " " + v).c_str());
   }
@@ -112,7 +118,7 @@ int main(int argc, char** argv) {
       const cv::Mat shift = (cv::Mat_<double>(2, 3) << c, -sn, cx - c * cx + sn * cy - (faulty ? cols : 0.0),  //
                              sn, c, cy - sn * cx - c * cy + (faulty ? rows : 0.0));
       cv::Mat moved;
-      cv::warpAffine(right, moved, shift, right.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+      cv::warpAffine(right, moved, shift, right.size(), interpolation, cv::BORDER_REPLICATE);
       if (blank_right && faulty) cv::GaussianBlur(moved, moved, cv::Size(0, 0), 8);
       const bool swapped = swap && faulty;
       if (!cv::imwrite(out + "/left/" + f.name + ".png", swapped ? moved : left) ||
