@@ -9,7 +9,9 @@
 #    rows already under 0.2 px: frames 1-10 were matched corrected. The file is not rewritten;
 #  - the same frames with another calibration (cx one pixel over): the file is said to be of
 #    another calibration and not used; the first verdict sets the correction again and replaces it;
-#  - a file that is not a rig state: the error bad_rig_state names it, every frame still comes out.
+#  - a file that is not a rig state: the error bad_rig_state names it, every frame still comes out;
+#  - the case it is for: under one nerv_up, the stereo_matcher killed after it saved its correction
+#    is restarted by nerv_up and corrects from its first frame again.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
@@ -98,4 +100,19 @@ line=$(grep "bad_rig_state" "$log" | head -n 1)
 read -r in out <<<"$(frames_out bad)"
 [[ "$in" == "$out" && "$in" -gt 0 ]] || fail "bad file: $in in, $out out"
 pass "a file that is not a rig state: ${line#*bad_rig_state: }"
-echo "4 passed, 0 failed"
+
+# Killed and restarted under nerv_up: the restarted matcher picks the correction up at its first frame.
+rm -f "$state"
+start_child "$tmp/up.log" "$BIN/nerv_up" --config "$tmp/kept.yaml" --lcm-url "$URL" --quiet
+"$BIN/nerv_source" --data "$tmp/moved" --repeat 2 --rate 10 --lcm-url "$URL" --drain-timeout 20 \
+  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source1.log" || fail "before the kill: $(tail -c 300 "$tmp/source1.log")"
+[[ -f "$state" ]] || fail "under nerv_up: nothing saved: $(grep -i 'rig state\|row_misaligned' "$tmp/up.log" | head -n 3)"
+victim=$(pgrep -f "^$BIN/stereo_matcher ") || fail "no stereo_matcher under nerv_up"
+kill -KILL "$victim"
+wait_until 20 bash -c "pgrep -f '^$BIN/stereo_matcher ' | grep -vx $victim" >/dev/null || fail "the stereo_matcher was not restarted: $(tail -n 5 "$tmp/up.log")"
+"$BIN/nerv_source" --data "$tmp/moved" --rate 10 --lcm-url "$URL" --drain-timeout 20 \
+  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" || fail "after the kill: $(tail -c 300 "$tmp/source2.log")"
+line=$(grep "rig state: from the first frame" "$tmp/up.log" | head -n 1)
+[[ -n "$line" ]] || fail "the restarted stereo_matcher restored nothing: $(grep -i 'rig state\|restart' "$tmp/up.log" | head -n 5)"
+pass "killed and restarted by nerv_up: ${line#*rig state: }"
+echo "5 passed, 0 failed"
