@@ -1,6 +1,7 @@
 #include "config.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +10,8 @@ namespace nerv {
 YAML::Node loadConfigFile(const std::string& path) {
   std::ifstream probe(path);
   if (!probe) throw ConfigError("config file " + path + " cannot be read");
+  // A folder opens as a stream and fails only on reading, inside yaml-cpp (which then leaks its buffer).
+  if (std::filesystem::is_directory(path)) throw ConfigError("config file " + path + " cannot be read: it is a folder");
   try {
     YAML::Node node = YAML::LoadFile(path);
     if (node.IsNull()) return YAML::Node(YAML::NodeType::Map);
