@@ -197,8 +197,9 @@ std::vector<RigFinding> RigStateKeeper::afterMatching(const RigCalibration& cali
                                                       const std::string& now_utc) {
   std::vector<RigFinding> out;
   if (!enabled()) return out;
-  const bool same = held_ && samePlane(saved_.rows, rig.rowCorrection()) &&
-                    saved_.offset_px == rig.offsetCorrection() && saved_.calibration.fingerprint == calibration.fingerprint;
+  // Written when a correction changes, with the calibration of the frames it was measured on; a
+  // calibration that changes mid-run alone writes nothing (the corrections are still the old camera's).
+  const bool same = held_ && samePlane(saved_.rows, rig.rowCorrection()) && saved_.offset_px == rig.offsetCorrection();
   // Nothing corrected and no file of this calibration to update: nothing to keep.
   if (same || (!held_ && rig.rowCorrection().zero() && rig.offsetCorrection() == 0)) return out;
   RigState state{calibration, rig.rowCorrection(), rig.offsetCorrection(), now_utc};

@@ -331,6 +331,22 @@ TEST_F(stereoRigState, AFailedWriteIsSaidOncePerChange) {
   EXPECT_NEAR(rig.rowCorrection().offset_px, 1.0, 0.05);  // corrected all the same
 }
 
+// Frames of another calibration mid-run, the corrections unchanged: the file keeps the calibration
+// they were measured under.
+TEST_F(stereoRigState, ACalibrationChangeAloneWritesNothing) {
+  ASSERT_EQ(writeRigState(path_, someState()), "");
+  RigCheck rig;
+  RigStateKeeper keeper(path_);
+  ASSERT_EQ(findingNames(keeper.beforeMatching(kCalibration, rig)), "rig_state_restored log");
+  RigCalibration other = kCalibration;
+  other.fingerprint = 7;
+  EXPECT_EQ(findingNames(keeper.afterMatching(other, rig, "later")), "");
+  RigState back;
+  bool absent = true;
+  ASSERT_EQ(readRigState(path_, back, absent), "");
+  EXPECT_EQ(back.calibration.fingerprint, kCalibration.fingerprint);
+}
+
 TEST_F(stereoRigState, NoFileNoKeeping) {
   RigCheck rig;
   RigStateKeeper keeper("");
