@@ -22,7 +22,7 @@ YAML::Node loadConfigFile(const std::string& path) {
                       std::to_string(e.mark.line + 1));
   } catch (const ConfigError&) {
     throw;
-  } catch (const std::exception& e) {  // the stream's own, e.g. a folder given as the file
+  } catch (const std::exception& e) {  // the stream's own: a read that fails midway
     throw ConfigError("config file " + path + " cannot be read: " + e.what());
   }
 }
