@@ -50,7 +50,7 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
   interpolateBackground(filled);
   DisparityScore s;
   long long bad = 0, had_value = 0;
-  double inlier_sum = 0;
+  double inlier_sum = 0, inlier_signed = 0;
   for (int v = 0; v < gt.rows; ++v) {
     const float* g = gt.ptr<float>(v);
     const float* e = estimate.ptr<float>(v);
@@ -63,6 +63,7 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
         const float err = std::fabs(e[u] - g[u]);
         if (err <= 1.0f) {
           inlier_sum += err;
+          inlier_signed += e[u] - g[u];
           ++s.inliers;
         }
       }
@@ -74,7 +75,10 @@ DisparityScore score(const cv::Mat& estimate, const cv::Mat& gt, IsBad is_bad) {
     s.error_rate = static_cast<double>(bad) / s.pixels;
     s.density = static_cast<double>(had_value) / s.pixels;
   }
-  if (s.inliers > 0) s.inlier_mean_error = inlier_sum / static_cast<double>(s.inliers);
+  if (s.inliers > 0) {
+    s.inlier_mean_error = inlier_sum / static_cast<double>(s.inliers);
+    s.inlier_mean_bias = inlier_signed / static_cast<double>(s.inliers);
+  }
   return s;
 }
 

@@ -28,6 +28,9 @@ struct DisparityScore {
   // 1 px of the truth (before interpolation), and how many of them there were.
   double inlier_mean_error = 0;
   long long inliers = 0;
+  // Their mean signed error d - gt: a disparity offset (a rig turned since calibration, or the
+  // matcher's own bias), which the absolute error and the error rate cannot show.
+  double inlier_mean_bias = 0;
 };
 
 // estimate, ground_truth: CV_32F [px], ground truth <= 0 = unknown.

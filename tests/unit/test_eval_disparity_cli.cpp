@@ -74,3 +74,12 @@ TEST_F(toolsEvalDisparityCli, NervSourceFrameIdsEachSeqOnceAndFromSeq) {
   const std::string plain = test::squeezeSpaces(test::runCli(base() + " 2>&1"));
   EXPECT_NE(plain.find("hand_made 1 D1 0.00%"), std::string::npos) << plain;
 }
+
+// Every disparity half a pixel too small: no pixel wrong by D1, the subpixel error 0.5 px, and the
+// bias column -0.5 px, the sign that tells an offset (a rig turned since calibration) apart.
+TEST_F(toolsEvalDisparityCli, TheBiasColumnIsSigned) {
+  writeLog(tmp / "run.lcmlog", {frame(1, "000000", 19.5f)});
+  const std::string out = test::squeezeSpaces(test::runCli(base() + " 2>&1"));
+  EXPECT_NE(out.find("hand_made 1 D1 0.00% 100.0% 0.500 -0.500"), std::string::npos) << out;
+  EXPECT_NE(out.find("subpx bias ms/frame"), std::string::npos) << out;
+}

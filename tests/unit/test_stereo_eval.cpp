@@ -61,9 +61,11 @@ TEST(stereoEval, SubpixelErrorOverTheEstimatesOwnInliers) {
   const DisparityScore s = scoreBad(est, gt, 2.0);
   EXPECT_EQ(s.inliers, 3);  // the invalid pixel, filled by interpolation, is not one
   EXPECT_NEAR(s.inlier_mean_error, (0.25 + 0.5 + 1.0) / 3.0, 1e-6);
+  EXPECT_NEAR(s.inlier_mean_bias, (0.25 - 0.5 + 1.0) / 3.0, 1e-6);  // signed: an offset shows
   const DisparityScore none = scoreD1(cv::Mat::zeros(1, 6, CV_32F), gt);
   EXPECT_EQ(none.inliers, 0);
   EXPECT_DOUBLE_EQ(none.inlier_mean_error, 0.0);
+  EXPECT_DOUBLE_EQ(none.inlier_mean_bias, 0.0);
 }
 
 TEST(stereoEval, EmptyEstimateIsAllWrong) {

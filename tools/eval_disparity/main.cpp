@@ -12,7 +12,8 @@
 // scored with D1 (|d - gt| > 3 px and > 5 %), Middlebury (8-bit) with bad-2.0;
 // both after the KITTI devkit's background interpolation, with the density of
 // the estimate and "subpx", the mean |d - gt| over its valid pixels within 1 px
-// of the truth (subpixel accuracy). Matching here, it also prints the stereo_matcher's
+// of the truth (subpixel accuracy), and "bias", their mean d - gt (a disparity offset: a rig
+// turned since calibration, or the matcher's own). Matching here, it also prints the stereo_matcher's
 // rectification check over the frames (rectification_check.hpp): how far the right view's
 // rows are off, the median of the frames, so a badly rectified set shows before its scores
 // are blamed on a matcher. Exit 0 on success, 2 on bad arguments or unreadable input.
@@ -42,7 +43,7 @@ namespace {
 
 struct Totals {
   long long pixels = 0;
-  double bad = 0, valid = 0, ms = 0, inlier_error = 0;
+  double bad = 0, valid = 0, ms = 0, inlier_error = 0, inlier_bias = 0;
   long long inliers = 0;
   int frames = 0;
   std::string metric;
@@ -51,6 +52,7 @@ struct Totals {
     bad += s.error_rate * s.pixels;
     valid += s.density * s.pixels;
     inlier_error += s.inlier_mean_error * static_cast<double>(s.inliers);
+    inlier_bias += s.inlier_mean_bias * static_cast<double>(s.inliers);
     inliers += s.inliers;
     ms += frame_ms;
     ++frames;
@@ -67,9 +69,10 @@ void printRow(const std::string& label, const Totals& t) {
     std::printf("%-20s no frame scored\n", label.c_str());
     return;
   }
-  std::printf("%-20s %6d %-8s %8.2f%% %8.1f%% %9.3f %9.1f\n", label.c_str(), t.frames,
-              t.metric.c_str(), 100.0 * t.bad / t.pixels, 100.0 * t.valid / t.pixels,
-              t.inliers ? t.inlier_error / static_cast<double>(t.inliers) : 0.0, t.ms / t.frames);
+  const double n = t.inliers ? static_cast<double>(t.inliers) : 1.0;
+  std::printf("%-20s %6d %-8s %8.2f%% %8.1f%% %9.3f %+9.3f %9.1f\n", label.c_str(), t.frames,
+              t.metric.c_str(), 100.0 * t.bad / t.pixels, 100.0 * t.valid / t.pixels, t.inlier_error / n,
+              t.inlier_bias / n, t.ms / t.frames);
 }
 
 int usage(const char* why) {
@@ -112,8 +115,8 @@ int main(int argc, char** argv) {
     return usage(e.err.c_str());
   }
   auto metricName = [](const std::string& kind) { return kind == "kitti" ? "D1" : "bad-2.0"; };
-  std::printf("%-20s %6s %-8s %9s %9s %9s %9s\n", "algorithm", "frames", "metric", "error",
-              "density", "subpx", "ms/frame");
+  std::printf("%-20s %6s %-8s %9s %9s %9s %9s %9s\n", "algorithm", "frames", "metric", "error",
+              "density", "subpx", "bias", "ms/frame");
 
   if (!log.empty()) {
     lcm::LogFile file(log, "r");
