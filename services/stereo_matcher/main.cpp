@@ -134,8 +134,7 @@ int serve(ServiceConfig& config) {
         left.rows != frame.calib.height)
       return node.error("size_mismatch", what + "decoded images do not match the calibration size");
     node.countIn();
-    const stereo::RigCalibration rig_calibration =
-        rig_state.enabled() ? rigCalibration(frame.calib) : stereo::RigCalibration{};
+    const auto rig_calibration = [&frame] { return rigCalibration(frame.calib); };  // when the keeper needs it
     report(rig_state.beforeMatching(rig_calibration, rig), "");  // the first frame: corrections restored
     report(rig.beforeMatching(left, right), what);  // the frame is matched whatever it says
 
@@ -177,7 +176,7 @@ int serve(ServiceConfig& config) {
     report(rig.afterMatching(matched_left, matched_right, disparity,
                              {frame.header.utime, out.calib.fx, out.calib.cx, out.calib.cy, out.calib.baseline_m}),
            what);
-    report(rig_state.afterMatching(rig_calibration, rig, nowUtc()), what);  // a changed correction kept
+    report(rig_state.afterMatching(rig_calibration, rig, nowUtc), what);  // a changed correction kept
   }, queue);
   return node.spin();
 }

@@ -136,14 +136,19 @@ std::vector<RigFinding> RigCheck::afterMatching(const cv::Mat& left, const cv::M
   return out;
 }
 
+RowPlane RigCheck::cappedRows(const RowPlane& rows, cv::Size size) const {
+  const double largest = rows.largestOver(size);
+  return largest > p_.max_row_correction_px ? rows.scaled(p_.max_row_correction_px / largest) : rows;
+}
+
+double RigCheck::cappedOffset(double offset_px) const {
+  const double most = p_.max_offset_correction_px;
+  return std::clamp(offset_px, -most, most);
+}
+
 bool RigCheck::restore(const RowPlane& rows, double offset_px, cv::Size size) {
-  if (p_.row_correction && !rows.zero()) {
-    const double largest = rows.largestOver(size);
-    correction_.setRows(largest > p_.max_row_correction_px ? rows.scaled(p_.max_row_correction_px / largest) : rows);
-  }
-  if (p_.offset_correction && offset_px != 0)
-    correction_.setColumns(std::clamp(offset_px, -static_cast<double>(p_.max_offset_correction_px),
-                                      static_cast<double>(p_.max_offset_correction_px)));
+  if (p_.row_correction && !rows.zero()) correction_.setRows(cappedRows(rows, size));
+  if (p_.offset_correction && offset_px != 0) correction_.setColumns(cappedOffset(offset_px));
   return !correction_.rows().zero() || correction_.columns() != 0;
 }
 
@@ -153,10 +158,8 @@ bool RigCheck::correctRows(const RowOffset& median, cv::Size size, std::vector<R
   RowPlane target;  // a rig back within the threshold needs no correction: the views as they are, byte for byte
   if (median.worst_px > p_.row_correction_above_px) {
     if (median.residual_worst_px <= p_.row_correction_above_px) return false;  // what is left is small: keep it
-    target = median.plane();
     // Beyond the largest correction, as far as it goes; the rest stays in the error.
-    const double largest = target.largestOver(size);
-    if (largest > p_.max_row_correction_px) target = target.scaled(p_.max_row_correction_px / largest);
+    target = cappedRows(median.plane(), size);
   } else if (correction_.rows().zero()) {
     return false;
   }
@@ -273,8 +276,7 @@ bool RigCheck::correctOffset(float left_over, float e, std::vector<RigFinding>& 
   if (!p_.offset_correction || std::abs(left_over) <= p_.max_disparity_offset_px) return false;
   double target = 0;
   if (std::abs(e) > p_.max_disparity_offset_px)
-    target = std::clamp(static_cast<double>(e), -static_cast<double>(p_.max_offset_correction_px),
-                        static_cast<double>(p_.max_offset_correction_px));
+    target = cappedOffset(e);
   if (std::abs(target - correction_.columns()) < 0.05) return false;  // the same again (held at the maximum)
   correction_.setColumns(target);
   out.push_back({RigFinding::Kind::Count, "offset_corrections", ""});

@@ -89,6 +89,9 @@ class RigCheck {
  private:
   // At a row verdict: sets, changes or drops the correction; true when it changed.
   bool correctRows(const RowOffset& median, cv::Size size, std::vector<RigFinding>& out);
+  // A correction as far as max_row_correction_px / max_offset_correction_px let it go.
+  RowPlane cappedRows(const RowPlane& rows, cv::Size size) const;
+  double cappedOffset(double offset_px) const;
   // At an offset verdict: sets, changes or drops the columns' correction; true when it changed.
   bool correctOffset(float left_over, float e, std::vector<RigFinding>& out);
   void checkAgainstMotion(int previous, const cv::Mat& right, const cv::Mat& disparity, const PairTiming& timing,

@@ -141,10 +141,11 @@ std::string calibrationDifference(const RigCalibration& saved, const RigCalibrat
   return "the same focal length, centre and baseline but other fields (fy, distortion or the cameras' pose)";
 }
 
-std::vector<RigFinding> RigStateKeeper::beforeMatching(const RigCalibration& calibration, RigCheck& rig) {
+std::vector<RigFinding> RigStateKeeper::beforeMatching(const CalibrationOf& calibration_of, RigCheck& rig) {
   std::vector<RigFinding> out;
   if (!enabled() || started_) return out;
   started_ = true;
+  const RigCalibration calibration = calibration_of();
   RigState state;
   bool absent = false;
   const std::string problem = readRigState(path_, state, absent);
@@ -193,8 +194,8 @@ std::vector<RigFinding> RigStateKeeper::beforeMatching(const RigCalibration& cal
   return out;
 }
 
-std::vector<RigFinding> RigStateKeeper::afterMatching(const RigCalibration& calibration, const RigCheck& rig,
-                                                      const std::string& now_utc) {
+std::vector<RigFinding> RigStateKeeper::afterMatching(const CalibrationOf& calibration, const RigCheck& rig,
+                                                      const Now& now_utc) {
   std::vector<RigFinding> out;
   if (!enabled()) return out;
   // Written when a correction changes, with the calibration of the frames it was measured on; a
@@ -202,7 +203,7 @@ std::vector<RigFinding> RigStateKeeper::afterMatching(const RigCalibration& cali
   const bool same = held_ && samePlane(saved_.rows, rig.rowCorrection()) && saved_.offset_px == rig.offsetCorrection();
   // Nothing corrected and no file of this calibration to update: nothing to keep.
   if (same || (!held_ && rig.rowCorrection().zero() && rig.offsetCorrection() == 0)) return out;
-  RigState state{calibration, rig.rowCorrection(), rig.offsetCorrection(), now_utc};
+  RigState state{calibration(), rig.rowCorrection(), rig.offsetCorrection(), now_utc()};
   const std::string problem = writeRigState(path_, state);
   if (!problem.empty()) {
     out.push_back({RigFinding::Kind::Error, "rig_state_not_saved",

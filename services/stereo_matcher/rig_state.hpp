@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,13 +53,16 @@ class RigStateKeeper {
  public:
   explicit RigStateKeeper(std::string path) : path_(std::move(path)) {}
   bool enabled() const { return !path_.empty(); }
+  // The frame's calibration and the time (ISO 8601), asked for only when they are used: at the
+  // first frame and when a correction is written, not on every frame.
+  using CalibrationOf = std::function<RigCalibration()>;
+  using Now = std::function<std::string()>;
   // Every accepted frame before it is matched; only the first does anything: reads the file
   // and, for this calibration, restores its corrections into rig.
-  std::vector<RigFinding> beforeMatching(const RigCalibration& calibration, RigCheck& rig);
+  std::vector<RigFinding> beforeMatching(const CalibrationOf& calibration, RigCheck& rig);
   // Every matched frame after the rig's checks: writes the corrections when they differ from
-  // what the file holds. now_utc: the time to record (ISO 8601).
-  std::vector<RigFinding> afterMatching(const RigCalibration& calibration, const RigCheck& rig,
-                                        const std::string& now_utc);
+  // what the file holds.
+  std::vector<RigFinding> afterMatching(const CalibrationOf& calibration, const RigCheck& rig, const Now& now_utc);
 
  private:
   std::string path_;

@@ -48,6 +48,14 @@ RigState someState() {
   return s;
 }
 
+// The keeper asks for the calibration and the time only when it uses them.
+RigStateKeeper::CalibrationOf calibrationOf(const RigCalibration& c) {
+  return [c] { return c; };
+}
+RigStateKeeper::Now at(const std::string& t) {
+  return [t] { return t; };
+}
+
 const char* const kGoodFile =
     "saved_utc: \"2026-12-07T03:00:00Z\"\n"
     "calibration: {fingerprint: \"0123456789abcdef\", width: 640, height: 240, fx: 721.5377, cx: 320.25, "
@@ -162,11 +170,11 @@ KeptRun runFrames(RigStateKeeper& keeper, RigCheck& rig, const RigCalibration& c
         const cv::Mat& right, int frames) {
   KeptRun r;
   for (int f = 1; f <= frames; ++f) {
-    const std::vector<RigFinding> before = keeper.beforeMatching(calibration, rig);
+    const std::vector<RigFinding> before = keeper.beforeMatching(calibrationOf(calibration), rig);
     r.restore.insert(r.restore.end(), before.begin(), before.end());
     const std::vector<RigFinding> checks = wallFrame(rig, left, right);
     r.checks.insert(r.checks.end(), checks.begin(), checks.end());
-    const std::vector<RigFinding> saves = keeper.afterMatching(calibration, rig, "2026-12-07T03:0" + std::to_string(f % 10) + ":00Z");
+    const std::vector<RigFinding> saves = keeper.afterMatching(calibrationOf(calibration), rig, at("2026-12-07T03:0" + std::to_string(f % 10) + ":00Z"));
     r.saves.insert(r.saves.end(), saves.begin(), saves.end());
   }
   return r;
@@ -203,7 +211,7 @@ TEST_F(stereoRigState, ACorrectionIsSavedAndRestoredFromTheFirstFrameOfTheNextRu
   // The next run: corrected from its first frame, said, still an error at its first verdict.
   RigCheck rig;
   RigStateKeeper keeper(path_);
-  const std::vector<RigFinding> restore = keeper.beforeMatching(kCalibration, rig);
+  const std::vector<RigFinding> restore = keeper.beforeMatching(calibrationOf(kCalibration), rig);
   EXPECT_EQ(findingNames(restore), "rig_state_restored log");
   const std::string& line = firstLog(restore)->message;
   EXPECT_NE(line.find("from the first frame the right views are resampled by 1.0"), std::string::npos) << line;
@@ -223,7 +231,7 @@ TEST_F(stereoRigState, BothCorrectionsAreRestoredAndSaid) {
   ASSERT_EQ(writeRigState(path_, someState()), "");
   RigCheck rig;
   RigStateKeeper keeper(path_);
-  const std::vector<RigFinding> f = keeper.beforeMatching(kCalibration, rig);
+  const std::vector<RigFinding> f = keeper.beforeMatching(calibrationOf(kCalibration), rig);
   ASSERT_EQ(findingNames(f), "rig_state_restored log");
   EXPECT_EQ(firstLog(f)->message, "rig state: from the first frame the right views are resampled by 1.59 px at most "
                                   "and 1.23 px is added to every disparity, as saved in " + path_ +
@@ -231,7 +239,7 @@ TEST_F(stereoRigState, BothCorrectionsAreRestoredAndSaid) {
   EXPECT_EQ(rig.offsetCorrection(), someState().offset_px);
   EXPECT_EQ(findingGauge(f, "offset_correction_px"), someState().offset_px);
   // Nothing changed: nothing written.
-  EXPECT_EQ(findingNames(keeper.afterMatching(kCalibration, rig, "later")), "");
+  EXPECT_EQ(findingNames(keeper.afterMatching(calibrationOf(kCalibration), rig, at("later"))), "");
 }
 
 TEST_F(stereoRigState, AMendedRigDropsTheRestoredCorrectionAndSavesThat) {
@@ -283,7 +291,7 @@ TEST_F(stereoRigState, ABadFileIsAnErrorAndTheRigIsMeasuredAgain) {
   write("row_correction: {offset_px: 1.0}\n");
   RigCheck rig;
   RigStateKeeper keeper(path_);
-  const std::vector<RigFinding> f = keeper.beforeMatching(kCalibration, rig);
+  const std::vector<RigFinding> f = keeper.beforeMatching(calibrationOf(kCalibration), rig);
   ASSERT_EQ(findingNames(f), "bad_rig_state");
   EXPECT_NE(f[0].message.find("not used: the rig's corrections are measured again"), std::string::npos)
       << f[0].message;
@@ -337,14 +345,38 @@ TEST_F(stereoRigState, ACalibrationChangeAloneWritesNothing) {
   ASSERT_EQ(writeRigState(path_, someState()), "");
   RigCheck rig;
   RigStateKeeper keeper(path_);
-  ASSERT_EQ(findingNames(keeper.beforeMatching(kCalibration, rig)), "rig_state_restored log");
+  ASSERT_EQ(findingNames(keeper.beforeMatching(calibrationOf(kCalibration), rig)), "rig_state_restored log");
   RigCalibration other = kCalibration;
   other.fingerprint = 7;
-  EXPECT_EQ(findingNames(keeper.afterMatching(other, rig, "later")), "");
+  EXPECT_EQ(findingNames(keeper.afterMatching(calibrationOf(other), rig, at("later"))), "");
   RigState back;
   bool absent = true;
   ASSERT_EQ(readRigState(path_, back, absent), "");
   EXPECT_EQ(back.calibration.fingerprint, kCalibration.fingerprint);
+}
+
+// Not on every frame: the calibration at the first frame and at the write, the time at the write.
+TEST_F(stereoRigState, TheCalibrationAndTimeAreAskedForOnlyWhenUsed) {
+  const cv::Mat left = wallTexture(17), moved = movedRightView(left, 1.0);
+  RigCheck rig;
+  RigStateKeeper keeper(path_);
+  int calibrations = 0, times = 0;
+  const RigStateKeeper::CalibrationOf calibration = [&] {
+    ++calibrations;
+    return kCalibration;
+  };
+  const RigStateKeeper::Now now = [&] {
+    ++times;
+    return std::string("2026-12-07T04:00:00Z");
+  };
+  for (int f = 1; f <= 30; ++f) {
+    keeper.beforeMatching(calibration, rig);
+    wallFrame(rig, left, moved);
+    keeper.afterMatching(calibration, rig, now);
+  }
+  EXPECT_EQ(calibrations, 2);  // the first frame, the write at the 10th
+  EXPECT_EQ(times, 1);
+  EXPECT_TRUE(fs::exists(path_));
 }
 
 TEST_F(stereoRigState, NoFileNoKeeping) {
