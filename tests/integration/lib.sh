@@ -66,6 +66,10 @@ kitti_or_synthetic() {  # the KITTI 0926 frames, or the synthetic urban sequence
   if [[ -d "$d" ]]; then echo "$d"; else synthetic_sequence urban 11; fi
 }
 
+matcher_field() {  # matcher_field NAME KEY: errors, frames_in, frames_out or a gauge of the stereo_matcher in $tmp/NAME/summary.json
+  tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o "\"$2\":[^,}]*" | cut -d: -f2
+}
+
 run_pipeline() {  # run_pipeline NAME DATA [ARGS...]: tools/nerv run of DATA into $tmp/NAME, its output in $tmp/NAME.txt
   local name="$1" data="$2"
   shift 2

@@ -35,14 +35,11 @@ trap 'stop_children; rm -rf "$tmp"' EXIT
 data=$(kitti_or_synthetic)
 
 run() { run_pipeline "$1" "$2" --repeat 2 --rate 10; }  # run NAME DATA: 2 x the sequence at 10 Hz, default config
-matcher_errors() {  # matcher_errors NAME: the stereo_matcher's error count in summary.json
-  tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"errors":[0-9]*' | cut -d: -f2
-}
 
 run aligned "$data"
 line=$(grep "rectification check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$line" == *": aligned" ]] || fail "no 'aligned' verdict for the calibrated rig: '$line'"
-[[ "$(matcher_errors aligned)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
+[[ "$(matcher_field aligned errors)" == 0 ]] || fail "errors on the calibrated rig: $(grep -i error "$tmp/aligned/logs/services.log" | head -n 3)"
 sync=$(grep "shutter check" "$tmp/aligned/logs/services.log" | head -n 1)
 [[ "$sync" == *": synchronised" ]] || fail "no 'synchronised' verdict for the recorded rig: '$sync'"
 offset=$(grep "disparity offset check" "$tmp/aligned/logs/services.log" | head -n 1)
@@ -52,10 +49,10 @@ pass "calibrated rig: $line"
 check_run() {  # check_run NAME: the misalignment error was said, counted, and no frame was lost
   line=$(grep "row_misaligned" "$tmp/$1/logs/services.log" | head -n 1)
   [[ -n "$line" ]] || fail "$1: no row_misaligned error: $(grep rectification "$tmp/$1/logs/services.log")"
-  (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
+  (( $(matcher_field "$1" errors) >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
   tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:frame[0-9]*:rectification' \
     || fail "$1: NERV_HEALTH's last_error is not the misalignment"
-  gauge=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"row_offset_px":[^,}]*' | cut -d: -f2)
+  gauge=$(matcher_field "$1" row_offset_px)
   awk -v g="$gauge" 'BEGIN { exit !(g > 0.4) }' || fail "$1: NERV_HEALTH's gauge row_offset_px is '$gauge'"
   out=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_out":[0-9]*' | head -n 1 | cut -d: -f2)
   in=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"frames_in":[0-9]*' | head -n 1 | cut -d: -f2)
@@ -81,7 +78,7 @@ for rows in 1 -1.5; do
   later=$(grep "row_misaligned" "$tmp/moved_$rows/logs/services.log" | sed -n 2p)
   left=$(sed -E 's/.*which leaves up to ([0-9.]+) px.*/\1/' <<<"$later")
   awk -v l="$left" 'BEGIN { exit !(l < 0.2) }' || fail "rows moved by $rows: after the correction: '$later'"
-  residual=$(tr -d '\n ' <"$tmp/moved_$rows/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"row_residual_px":[^,}]*' | cut -d: -f2)
+  residual=$(matcher_field "moved_$rows" row_residual_px)
   awk -v g="$residual" 'BEGIN { exit !(g < 0.2) }' || fail "rows moved by $rows: NERV_HEALTH's row_residual_px is '$residual'"
   pass "right views moved by $rows rows, corrected by $by px: the matcher sees up to $left px (frame $(seq_of "$later"))"
 done
@@ -104,9 +101,9 @@ line=$(grep "disparity_offset" "$tmp/cols/logs/services.log" | head -n 1)
 read_px=$(sed -E 's/.*the disparity reads ([0-9.]+) px less.*/\1/' <<<"$line")
 awk -v r="$read_px" 'BEGIN { exit !(r >= 0.7 && r <= 1.6) }' || fail "cols: a 1 px offset read as $read_px px: '$line'"
 grep -q "row_misaligned\|views_unsynchronised" "$tmp/cols/logs/services.log" && fail "cols: also reported as rows or shutters"
-gauge=$(tr -d '\n ' <"$tmp/cols/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"disparity_offset_px":[^,}]*' | cut -d: -f2)
+gauge=$(matcher_field cols disparity_offset_px)
 awk -v g="$gauge" 'BEGIN { exit !(g <= -0.7) }' || fail "cols: NERV_HEALTH's gauge disparity_offset_px is '$gauge'"
-applied=$(tr -d '\n ' <"$tmp/cols/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"offset_correction_px":[^,}]*' | cut -d: -f2)
+applied=$(matcher_field cols offset_correction_px)
 near "$applied" "-$read_px" 0.01 || fail "cols: NERV_HEALTH's offset_correction_px is '$applied', the verdict read -$read_px"
 pass "right views a column over: ${line#*disparity_offset: }"
 
@@ -170,7 +167,7 @@ named_fault() {
   run "$1" "$tmp/data_$1"
   line=$(grep "$3" "$tmp/$1/logs/services.log" | head -n 1)
   [[ "$line" == *"$4"* ]] || fail "$1: no $3 error: '$line' $(grep -i "stereo_matcher" "$tmp/$1/logs/services.log" | head -n 3)"
-  (( $(matcher_errors "$1") >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
+  (( $(matcher_field "$1" errors) >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
   grep -q "$5" "$tmp/$1/logs/services.log" && fail "$1 also reported as $5"
   grep -q "$3" "$tmp/aligned/logs/services.log" && fail "the recorded rig reported $3"
   pass "$1: ${line#*$3: }"

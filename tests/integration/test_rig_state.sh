@@ -26,10 +26,7 @@ grep -q "^  rig_state_file: " "$tmp/kept.yaml" || fail "could not set rig_state_
 
 run() { run_pipeline "$1" "$2" --config "$tmp/kept.yaml" --repeat 2 --rate 10; }  # 2 x at 10 Hz, the state kept
 matcher_value() {  # matcher_value NAME KEY: errors (summary.json) or a counter of the stereo_matcher's last NERV_HEALTH
-  if [[ "$2" == errors ]]; then
-    tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}' | grep -o '"errors":[0-9]*' | cut -d: -f2
-    return
-  fi
+  if [[ "$2" == errors ]]; then matcher_field "$1" errors; return; fi
   [[ -f "$tmp/$1.jsonl" ]] || "$BIN/nerv_export" "$tmp/$1/nerv.lcmlog" --json --no-blobs >"$tmp/$1.jsonl"
   local h names values i
   h=$(grep '"channel":"NERV_HEALTH"' "$tmp/$1.jsonl" | grep '"service":"stereo_matcher"' | tail -n 1)
@@ -38,11 +35,7 @@ matcher_value() {  # matcher_value NAME KEY: errors (summary.json) or a counter 
   i=$(grep -nx "$2" <<<"$names" | cut -d: -f1)
   [[ -n "$i" ]] && sed -n "${i}p" <<<"$values"
 }
-frames_out() {  # frames_out NAME: "IN OUT" of the stereo_matcher
-  local s
-  s=$(tr -d '\n ' <"$tmp/$1/summary.json" | grep -o '"stereo_matcher/0":{[^}]*}')
-  echo "$(grep -o '"frames_in":[0-9]*' <<<"$s" | cut -d: -f2) $(grep -o '"frames_out":[0-9]*' <<<"$s" | cut -d: -f2)"
-}
+frames_out() { echo "$(matcher_field "$1" frames_in) $(matcher_field "$1" frames_out)"; }  # "IN OUT" of the stereo_matcher
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { exit !(a - b <= t && b - a <= t) }'; }
 
 # First run: no file yet; written at the first verdict's correction.

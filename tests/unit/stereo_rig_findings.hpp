@@ -24,4 +24,11 @@ inline double findingGauge(const std::vector<RigFinding>& findings, const std::s
   return NAN;
 }
 
+// The first finding of this kind, nullptr when there is none.
+inline const RigFinding* firstFinding(const std::vector<RigFinding>& findings, RigFinding::Kind kind) {
+  for (const RigFinding& f : findings)
+    if (f.kind == kind) return &f;
+  return nullptr;
+}
+
 }  // namespace nerv::stereo

@@ -181,9 +181,7 @@ KeptRun runFrames(RigStateKeeper& keeper, RigCheck& rig, const RigCalibration& c
 }
 
 const RigFinding* firstLog(const std::vector<RigFinding>& findings) {
-  for (const RigFinding& f : findings)
-    if (f.kind == RigFinding::Kind::Log) return &f;
-  return nullptr;
+  return firstFinding(findings, RigFinding::Kind::Log);
 }
 
 TEST_F(stereoRigState, ACorrectionIsSavedAndRestoredFromTheFirstFrameOfTheNextRun) {

@@ -17,12 +17,6 @@
 namespace nerv::stereo {
 namespace {
 
-const RigFinding* said(const std::vector<RigFinding>& findings, RigFinding::Kind kind) {
-  for (const RigFinding& f : findings)
-    if (f.kind == kind) return &f;
-  return nullptr;
-}
-
 TEST(stereoViewCorrection, NoPlaneLeavesTheViewAsItIs) {
   ViewCorrection none;
   const cv::Mat right = movedRightView(wallTexture(1), 0);
@@ -106,7 +100,7 @@ TEST(stereoRigCheckCorrection, ARowOffIsCorrectedFromTheNextFrameAndStillAnError
   for (int f = 1; f <= 9; ++f) EXPECT_EQ(findingNames(wallFrame(rig, left, moved)), "row_checks") << f;
   const std::vector<RigFinding> tenth = wallFrame(rig, left, moved);
   ASSERT_EQ(findingNames(tenth), "row_checks row_corrections row_misaligned");
-  const std::string& first = said(tenth, RigFinding::Kind::Error)->message;
+  const std::string& first = firstFinding(tenth, RigFinding::Kind::Error)->message;
   EXPECT_NE(first.find("rectification: the right view's rows lie 1.0"), std::string::npos) << first;
   EXPECT_NE(first.find("; from the next frame the stereo_matcher resamples its right views by 1.0"), std::string::npos)
       << first;
