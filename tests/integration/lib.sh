@@ -9,6 +9,8 @@ set -euo pipefail
 BIN="$NERV_BUILD/bin"
 URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 SERVICES=(stereo_matcher stixel snv_extrinsic validator)
+# An lcm-logger on this bus, for pgrep -f (an extended regex: the URL's '?' and '.' escaped).
+LOGGER_PATTERN="lcm-logger --lcm-url=$(printf '%s' "$URL" | sed 's/[][\.*^$?+(){}|]/\\&/g')"
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 pass() { echo "ok: $*"; }
@@ -78,7 +80,7 @@ run_pipeline() {  # run_pipeline NAME DATA [ARGS...]: tools/nerv run of DATA int
 }
 
 no_survivors() {  # no process of this build left running
-  ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "lcm-logger --lcm-url=$URL" >/dev/null
+  ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "$LOGGER_PATTERN" >/dev/null
 }
 
 # best_kept_iou FILE X1 Y1 X2 Y2: the best IoU of a kept detection in FILE (DETECTIONS as

@@ -17,7 +17,11 @@
 // on NERV_HEALTH itself (service "nerv_up", instance = host), once a second and
 // at every restart: errors = restarts so far, a counter per restarted service,
 // the last restart as last_error, so a log shows when and why a stage was
-// missing. A status line
+// missing. With `run.record.folder` set it also records the bus: lcm-logger,
+// restarted like a service, writes FOLDER/nerv-<UTC start>.lcmlog.NN files of
+// run.record.split_mb each; nerv_up deletes the oldest beyond run.record.keep_mb
+// and stops the logger while the disk has less than run.record.min_free_mb free
+// (recording.hpp). A status line
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
 // every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
 #include <signal.h>
@@ -32,6 +36,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,6 +47,7 @@
 #include "lcm_node.hpp"
 #include "health_compat.hpp"
 #include "nerv/health_t.hpp"
+#include "recording.hpp"
 #include "service_watchdog.hpp"
 
 using namespace nerv;
@@ -56,6 +62,7 @@ const char* const kServices[] = {"stereo_matcher", "stixel", "snv_extrinsic", "v
 
 struct Child {
   std::string service, instance;
+  bool reports_health = true;  // false for lcm-logger: no watchdog, not a source's wait
   std::vector<std::string> argv;
   pid_t pid = -1;
   int restarts = 0;
@@ -63,6 +70,7 @@ struct Child {
   double backoff_s = 0;
   ServiceWatchdog watchdog;
   bool hung = false;  // killed by the watchdog, not yet reaped
+  bool held = false;  // stopped on purpose (the recorder on a full disk): not restarted until released
   Clock::time_point started, restart_at;
 };
 
@@ -70,6 +78,15 @@ struct Options {
   std::string config, lcm_url, prefix, bin_dir, services;
   bool status_only = false, quiet = false, list_only = false;
   double listen_s = 2.0, exit_when_idle_s = 0;
+};
+
+// The recording's figures for nerv_up's own health report.
+struct RecorderState {
+  RecordSettings settings;
+  std::unique_ptr<RecordingGate> gate;
+  int64_t deleted = 0, pauses = 0;
+  double recording_mb = 0, free_mb = -1;
+  std::string free_error;  // the last failure to read the free space, said once
 };
 
 double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
@@ -125,8 +142,8 @@ struct HealthBoard {
 
 // The supervisor's own report: how often each child was restarted and why the last time.
 void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const std::string& host,
-                             const std::vector<Child>& children, const std::string& last_event,
-                             bool restarted_since_last) {
+                             const std::vector<Child>& children, const RecorderState* recorder,
+                             const std::string& last_event, bool restarted_since_last) {
   static CpuShare cpu_share;
   health_t h{};  // every count zero until set: lcm-gen's structs leave them uninitialised
   h.utime = nowUtime();
@@ -147,8 +164,14 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
     h.counter_names.push_back("hung_" + c.service + "/" + c.instance);
     h.counter_values.push_back(c.hangs);
   }
+  if (recorder) {
+    h.counter_names.insert(h.counter_names.end(), {"recordings_deleted", "recording_paused"});
+    h.counter_values.insert(h.counter_values.end(), {recorder->deleted, recorder->pauses});
+    h.gauge_names = {"recording_mb", "disk_free_mb"};
+    h.gauge_values = {recorder->recording_mb, recorder->free_mb};
+  }
   h.num_counters = static_cast<int32_t>(h.counter_names.size());
-  addProcessGauges(h, cpu_share);
+  addProcessGauges(h, cpu_share);  // and num_gauges
   h.latency_p50_ms = h.latency_p95_ms = h.processing_ms = 0;
   // degraded: a service is down (waiting for its restart) or was restarted since the last report.
   h.status = all_running && !restarted_since_last ? "ok" : "degraded";
@@ -170,6 +193,65 @@ pid_t spawn(const Child& c) {
     _exit(127);
   }
   return pid;
+}
+
+// Once a second: the oldest recordings beyond keep_mb deleted, and the logger stopped while
+// the disk is below min_free_mb (started again once a file more fits).
+void checkRecording(RecorderState& r, std::vector<Child>& children, std::string& last_event, bool& event) {
+  Child* logger = nullptr;
+  for (auto& c : children)
+    if (!c.reports_health) logger = &c;
+  if (!logger) return;
+  const RecordSettings& s = r.settings;
+  auto files = listRecordings(s.folder);
+  if (s.keep_mb > 0) {
+    for (const RecordingFile& f : recordingsToDelete(files, static_cast<uint64_t>(s.keep_mb * 1048576.0))) {
+      std::error_code ec;
+      if (!std::filesystem::remove(f.path, ec) && ec) {
+        std::fprintf(stderr, "nerv_up: recording %s cannot be deleted: %s\n", f.path.c_str(), ec.message().c_str());
+        continue;
+      }
+      ++r.deleted;
+      std::fprintf(stderr, "nerv_up: deleted the recording %s (%.1f MB): the folder holds more than run.record.keep_mb %g\n",
+                   f.path.c_str(), f.bytes / 1048576.0, s.keep_mb);
+    }
+    files = listRecordings(s.folder);
+  }
+  r.recording_mb = totalBytes(files) / 1048576.0;
+  uint64_t free_bytes = 0;
+  std::string error;
+  if (!freeBytes(s.folder, free_bytes, error)) {
+    if (error != r.free_error) std::fprintf(stderr, "nerv_up: free space of %s cannot be read: %s\n", s.folder.c_str(), error.c_str());
+    r.free_error = error;
+    r.free_mb = -1;
+    return;
+  }
+  r.free_error.clear();
+  r.free_mb = free_bytes / 1048576.0;
+  const bool was_paused = r.gate->paused();
+  const bool may_run = r.gate->update(free_bytes);
+  char line[512];
+  if (!may_run && !was_paused) {
+    ++r.pauses;
+    std::snprintf(line, sizeof line, "recording paused: %.0f MB free on %s, below run.record.min_free_mb %g; it resumes at %g MB",
+                  r.free_mb, s.folder.c_str(), s.min_free_mb, s.min_free_mb + s.split_mb);
+    std::fprintf(stderr, "nerv_up: %s\n", line);
+    last_event = line;
+    event = true;
+    logger->held = true;
+    if (logger->pid > 0) kill(logger->pid, SIGTERM);  // reaped in the loop, not restarted while held
+  } else if (may_run && was_paused) {
+    std::snprintf(line, sizeof line, "recording resumed: %.0f MB free on %s", r.free_mb, s.folder.c_str());
+    std::fprintf(stderr, "nerv_up: %s\n", line);
+    last_event = line;
+    event = true;
+    logger->held = false;
+    if (logger->pid < 0) {  // started again at once; not a restart of a failed process
+      logger->pid = spawn(*logger);
+      logger->started = Clock::now();
+      std::fprintf(stderr, "nerv_up: started lcm-logger/0 (pid %d)\n", logger->pid);
+    }
+  }
 }
 
 int status(const Options& o) {
@@ -210,6 +292,7 @@ int up(const Options& flags) {
   run.get("watchdog_startup_s", watchdog.startup_s, 1, 3600);
   if (watchdog.silent_s > 0 && watchdog.silent_s < 2)
     throw ConfigError("config key 'run.watchdog_s' must be 0 (off) or at least 2 s: services report once a second");
+  const RecordSettings record = readRecordSettings(run.section("record"));
   ConfigSection shards = run.section("shards");
   std::map<std::string, int> shard_count;
   for (const char* s : kServices) {
@@ -237,12 +320,31 @@ int up(const Options& flags) {
       children.push_back(c);
     }
   }
+  const std::string url = o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url;
+  std::unique_ptr<RecorderState> recorder;
+  if (record.enabled() && !o.list_only) {
+    const std::string logger = findOnPath("lcm-logger");
+    if (logger.empty()) throw ConfigError("run.record.folder is set, but lcm-logger is not on PATH (Debian package liblcm-bin)");
+    const std::string problem = prepareRecordingFolder(record.folder);
+    if (!problem.empty()) throw ConfigError(problem);
+    recorder = std::make_unique<RecorderState>();
+    recorder->settings = record;
+    recorder->gate = std::make_unique<RecordingGate>(static_cast<uint64_t>(record.min_free_mb * 1048576.0),
+                                                      static_cast<uint64_t>(record.split_mb * 1048576.0));
+    Child c;
+    c.service = "lcm-logger";
+    c.instance = "0";
+    c.reports_health = false;
+    c.argv = loggerArgv(record, logger, url);
+    children.push_back(c);
+  }
   if (o.list_only) {
     for (const auto& c : children) std::printf("%s/%s\n", c.service.c_str(), c.instance.c_str());
     return 0;
   }
   // Configuration problems show now, once, not as a restart loop.
   for (const auto& c : children) {
+    if (!c.reports_health) continue;
     std::string cmd = c.argv[0] + " --config '" + o.config + "' --check-config 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     char line[512] = {0};
@@ -250,7 +352,6 @@ int up(const Options& flags) {
     if (!p || pclose(p) != 0) throw ConfigError(std::string(line[0] ? line : "config check failed\n").substr(0, std::strlen(line) - 1));
   }
 
-  const std::string url = o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url;
   lcm::LCM lcm(url);
   if (!lcm.good()) throw std::runtime_error("LCM cannot start on " + url);
   HealthBoard board;
@@ -258,7 +359,11 @@ int up(const Options& flags) {
   lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
 
   std::fprintf(stderr, "nerv_up: nerv %s\n", buildVersion());
+  std::string last_event;
+  bool event_since_report = false;
+  if (recorder) checkRecording(*recorder, children, last_event, event_since_report);
   for (auto& c : children) {
+    if (c.held) continue;
     c.pid = spawn(c);
     c.started = Clock::now();
     c.watchdog.started(seconds(c.started));
@@ -268,8 +373,6 @@ int up(const Options& flags) {
   auto last_print = Clock::now();
   auto last_activity = Clock::now();
   auto last_report = Clock::now() - std::chrono::seconds(1);
-  std::string last_event;
-  bool event_since_report = false;
   while (!g_stop) {
     lcm.handleTimeout(50);
     for (auto& c : children) {
@@ -283,6 +386,10 @@ int up(const Options& flags) {
                         c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
                         WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
                         c.hung ? " (hung)" : "", c.backoff_s);
+          if (c.held) {  // stopped by checkRecording, which said why
+            c.pid = -1;
+            continue;
+          }
           std::fprintf(stderr, "nerv_up: %s\n", event);
           last_event = event;
           event_since_report = true;
@@ -291,7 +398,7 @@ int up(const Options& flags) {
           c.hung = false;
           c.restart_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(c.backoff_s));
           c.backoff_s = std::min(backoff_max, c.backoff_s * 2);
-        } else if (!c.hung) {
+        } else if (!c.hung && c.reports_health) {
           if (auto it = board.seen_pid.find(c.pid); it != board.seen_pid.end())
             c.watchdog.reported(seconds(it->second));
           const double now = seconds(Clock::now());
@@ -306,7 +413,7 @@ int up(const Options& flags) {
             c.hung = true;
           }
         }
-      } else if (Clock::now() >= c.restart_at) {
+      } else if (!c.held && Clock::now() >= c.restart_at) {
         c.pid = spawn(c);
         c.started = Clock::now();
         c.watchdog.started(seconds(c.started));
@@ -318,7 +425,9 @@ int up(const Options& flags) {
     }
     // Once a second, and at once when a service went down or came back.
     if (event_since_report || Clock::now() - last_report >= std::chrono::seconds(1)) {
-      publishSupervisorHealth(lcm, o.prefix + "NERV_HEALTH", board.host, children, last_event, event_since_report);
+      if (recorder) checkRecording(*recorder, children, last_event, event_since_report);
+      publishSupervisorHealth(lcm, o.prefix + "NERV_HEALTH", board.host, children, recorder.get(), last_event,
+                              event_since_report);
       last_report = Clock::now();
       event_since_report = false;
     }
