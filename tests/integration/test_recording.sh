@@ -52,6 +52,11 @@ for c in STEREO_FRAME DISPARITY STIXELS SURFACE_NORMALS EXTRINSICS DETECTIONS; d
   [[ "$n" == 12 ]] || fail "$c: $n of 12 events in the recording"
 done
 pass "12 frames, every channel's 12 events in ${#files[@]} files, the first $first"
+# The split recording is one drive to nerv replay: the files in name order, one after another.
+"$NERV_ROOT/tools/nerv" replay "$tmp/rec"/nerv-*.lcmlog.* --lcm-url "$URL" --out "$tmp/replayed" >"$tmp/replay.txt" 2>&1 \
+  || fail "replay of the split recording: $(tail -n 3 "$tmp/replay.txt")"
+grep -q "replayed 12 frames, 12 with DETECTIONS" "$tmp/replay.txt" || fail "replay: $(tail -n 3 "$tmp/replay.txt")"
+pass "$(grep -o "replaying .* through" "$tmp/replay.txt" | sed 's/ through//'): $(grep -o "replayed 12 frames, 12 with DETECTIONS" "$tmp/replay.txt")"
 
 # 2. A killed logger is started again and the frames after it are recorded.
 config kill "$tmp/rec2" 1024 0 0
@@ -86,7 +91,7 @@ stop_children
 pass "$deleted files deleted, $total bytes left (keep_mb 6), drive_monday.lcmlog kept; $(echo "$status" | grep -o 'recording_mb [0-9.]*')"
 
 # 4. A full disk: a 40 MB tmpfs of this test's own mount namespace, min_free_mb 20.
-if ! unshare -m true 2>/dev/null; then echo "SKIP: no mount namespace for the full-disk check" >&2; echo "3 passed"; exit 0; fi
+if ! unshare -m true 2>/dev/null; then echo "SKIP: no mount namespace for the full-disk check" >&2; echo "4 passed"; exit 0; fi
 cat >"$tmp/full.sh" <<EOF
 set -euo pipefail
 source "$NERV_ROOT/tests/integration/lib.sh"
@@ -117,4 +122,4 @@ EOF
 out=$(NERV_IN_NETNS=1 unshare -m bash "$tmp/full.sh" 2>&1) || fail "full disk: $out"
 pass "full disk: $(echo "$out" | tail -n 1)"
 no_survivors || fail "processes survived: $(pgrep -af "^$BIN/|lcm-logger")"
-echo "4 passed, 0 failed"
+echo "5 passed, 0 failed"
