@@ -56,6 +56,7 @@ TEST(toolsRecording, BadSettingsNameTheKey) {
   EXPECT_NE(errorOf("{folder: /r, min_free_mb: -1}").find("'run.record.min_free_mb'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /r, split_mb: .nan}").find("'run.record.split_mb'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: recordings}").find("must be an absolute path"), std::string::npos);
+  EXPECT_NE(errorOf("{folder: /data/100%}").find("'run.record.folder' must not contain '%'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /r, channels: ''}").find("'run.record.channels' is empty"), std::string::npos);
   // The file being written is never deleted, so the budget must hold two files.
   const std::string small = errorOf("{folder: /r, split_mb: 100, keep_mb: 150}");

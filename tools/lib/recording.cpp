@@ -34,6 +34,9 @@ RecordSettings readRecordSettings(ConfigSection record) {
   }
   if (s.enabled() && s.folder.front() != '/')
     throw ConfigError("config key '" + record.path() + ".folder' must be an absolute path: '" + s.folder + "'");
+  // The logger formats the whole path with strftime (-s): a '%' in the folder would be expanded.
+  if (s.folder.find('%') != std::string::npos)
+    throw ConfigError("config key '" + record.path() + ".folder' must not contain '%': '" + s.folder + "'");
   return s;
 }
 
