@@ -50,7 +50,7 @@ check_run() {  # check_run NAME: the misalignment error was said, counted, and n
   line=$(grep "row_misaligned" "$tmp/$1/logs/services.log" | head -n 1)
   [[ -n "$line" ]] || fail "$1: no row_misaligned error: $(grep rectification "$tmp/$1/logs/services.log")"
   (( $(matcher_field "$1" errors) >= 1 )) || fail "$1: NERV_HEALTH of the stereo_matcher counts no error"
-  tr -d '\n ' <"$tmp/$1/summary.json" | grep -q '"last_error":"row_misaligned:frame[0-9]*:rectification' \
+  tr -d '\n ' <"$tmp/$1/summary.json" | grep '"last_error":"row_misaligned:frame[0-9]*:rectification' >/dev/null \
     || fail "$1: NERV_HEALTH's last_error is not the misalignment"
   gauge=$(matcher_field "$1" row_offset_px)
   awk -v g="$gauge" 'BEGIN { exit !(g > 0.4) }' || fail "$1: NERV_HEALTH's gauge row_offset_px is '$gauge'"

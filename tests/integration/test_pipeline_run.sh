@@ -48,7 +48,7 @@ build=$("$BIN/stixel" --version | sed 's/^stixel: nerv //')
 for s in "${SERVICES[@]}" source nerv_up; do
   binary=$s; [[ $s == source ]] && binary=nerv_source
   [[ "$("$BIN/$binary" --version)" == "$binary: nerv $build" ]] || fail "$binary --version: $("$BIN/$binary" --version)"
-  grep "\"service\":\"$s\"" "$out/health.jsonl" | grep -qF "\"version\":\"$build\"" \
+  grep "\"service\":\"$s\"" "$out/health.jsonl" | grep -F "\"version\":\"$build\"" >/dev/null \
     || fail "$s's health does not name the build $build: $(grep "\"service\":\"$s\"" "$out/health.jsonl" | tail -n1)"
 done
 grep -qF "\"version\":\"$build\"" "$out/summary.json" || fail "the summary does not name the build"

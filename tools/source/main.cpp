@@ -8,10 +8,17 @@
 // without DETECTIONS at any time. After the last frame it waits for every
 // frame's DETECTIONS; exit 0 when all arrived, 3 when some did not. A folder with
 // raw_calib.yaml holds raw views: they go out unrectified with the rig's calibration.
+//
+// The environment variable NERV_SOURCE_MAX_RATE (Hz) caps --rate for every source a
+// script starts: `tools/nerv sanitize` plays the multiprocess tests at 1 Hz that way,
+// as the sanitized stereo_matcher needs about 300 ms a frame (--rate 0 is left as is:
+// it waits for the answers anyway).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -83,6 +90,16 @@ Options parse(int argc, char** argv) {
   if (o.version) return o;
   if (o.data.empty() && o.max_frames != 0) throw std::runtime_error("--data DIR is required");
   if (o.rate_hz < 0) throw std::runtime_error("--rate must be >= 0");
+  if (const char* cap = std::getenv("NERV_SOURCE_MAX_RATE"); cap && *cap) {
+    char* end = nullptr;
+    const double max_hz = std::strtod(cap, &end);
+    if (*end != '\0' || !(max_hz > 0) || !std::isfinite(max_hz))
+      throw std::runtime_error(std::string("NERV_SOURCE_MAX_RATE must be a rate above 0 Hz, not '") + cap + "'");
+    if (o.rate_hz > max_hz) {
+      std::fprintf(stderr, "source: --rate %g capped at %g Hz by NERV_SOURCE_MAX_RATE\n", o.rate_hz, max_hz);
+      o.rate_hz = max_hz;
+    }
+  }
   if (o.in_flight < 1) throw std::runtime_error("--in-flight must be >= 1");
   if (o.repeat < 1) throw std::runtime_error("--repeat must be >= 1");
   if (o.encoding != "gray8" && o.encoding != "bgr8" && o.encoding != "png" && o.encoding != "jpeg")
