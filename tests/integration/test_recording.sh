@@ -36,6 +36,9 @@ up() {  # up NAME: nerv_up with $tmp/NAME.yaml, its log $tmp/NAME.log
 
 # 1. Every frame recorded, across split files named by their UTC start.
 config split "$tmp/rec" 4 0 0
+# A source waits for the instances --list names: the logger sends no health, so it is not one.
+listed=$("$BIN/nerv_up" --config "$tmp/split.yaml" --list | tr '\n' ' ')
+[[ "$listed" == "stereo_matcher/0 stixel/0 snv_extrinsic/0 validator/0 " ]] || fail "nerv_up --list: $listed"
 up split
 started_s=$(date +%s)
 send 2 10
