@@ -89,6 +89,13 @@ struct RecorderState {
   std::string free_error;  // the last failure to read the free space, said once
 };
 
+// The bus: --lcm-url (or the config's lcm_url), else LCM_DEFAULT_URL, else nerv's default.
+std::string busUrl(const std::string& flag) {
+  if (!flag.empty()) return flag;
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  return env ? env : kDefaultLcmUrl;
+}
+
 double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
 
 struct HealthBoard {
@@ -255,7 +262,7 @@ void checkRecording(RecorderState& r, std::vector<Child>& children, std::string&
 }
 
 int status(const Options& o) {
-  lcm::LCM lcm(o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url);
+  lcm::LCM lcm(busUrl(o.lcm_url));
   if (!lcm.good()) throw std::runtime_error("LCM cannot start");
   HealthBoard board;
   lcm.subscribe(o.prefix + "NERV_HEALTH", &HealthBoard::onHealth, &board);
@@ -320,7 +327,7 @@ int up(const Options& flags) {
       children.push_back(c);
     }
   }
-  const std::string url = o.lcm_url.empty() ? std::string(std::getenv("LCM_DEFAULT_URL") ? std::getenv("LCM_DEFAULT_URL") : kDefaultLcmUrl) : o.lcm_url;
+  const std::string url = busUrl(o.lcm_url);
   std::unique_ptr<RecorderState> recorder;
   if (record.enabled() && !o.list_only) {
     const std::string logger = findOnPath("lcm-logger");
