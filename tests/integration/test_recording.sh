@@ -2,7 +2,8 @@
 # nerv_up records the bus (run.record): the real lcm-logger, supervised, writes split
 # files named by their UTC start that together hold every frame's messages; a killed
 # logger is started again; the oldest recordings beyond keep_mb are deleted and nothing
-# else in the folder is; and on a disk with less than min_free_mb free the logger is
+# else in the folder is; the messages the logger itself drops (a queue for the disk
+# that overflows) are counted and said; and on a disk with less than min_free_mb free the logger is
 # stopped and started again once space is back, while the services go on detecting.
 # The full disk is a 40 MB tmpfs in a mount namespace of this test's own.
 source "$(dirname "$0")/lib.sh"
@@ -54,6 +55,8 @@ for c in STEREO_FRAME DISPARITY STIXELS SURFACE_NORMALS EXTRINSICS DETECTIONS; d
   n=$(events "$c" "${files[@]}")
   [[ "$n" == 12 ]] || fail "$c: $n of 12 events in the recording"
 done
+grep -q "lcm-logger is dropping" "$tmp/split.log" && fail "drops said with the logger's default queue: $(grep "lcm-logger" "$tmp/split.log")"
+grep -q "recording into $tmp/rec/nerv-.*\.lcmlog\.00" "$tmp/split.log" || fail "the file being written is not said: $(cat "$tmp/split.log")"
 pass "12 frames, every channel's 12 events in ${#files[@]} files, the first $first"
 # The split recording is one drive to nerv replay: the files in name order, one after another.
 "$NERV_ROOT/tools/nerv" replay "$tmp/rec"/nerv-*.lcmlog.* --lcm-url "$URL" --out "$tmp/replayed" >"$tmp/replay.txt" 2>&1 \
@@ -93,8 +96,26 @@ status=$("$BIN/nerv_up" --status --lcm-url "$URL" --listen 1.5 | grep "^nerv_up/
 stop_children
 pass "$deleted files deleted, $total bytes left (keep_mb 6), drive_monday.lcmlog kept; $(echo "$status" | grep -o 'recording_mb [0-9.]*')"
 
-# 4. A full disk: a 40 MB tmpfs of this test's own mount namespace, min_free_mb 20.
-if ! unshare -m true 2>/dev/null; then echo "SKIP: no mount namespace for the full-disk check" >&2; echo "4 passed"; exit 0; fi
+# 4. The logger's own drops: with a queue smaller than one frame (max_unwritten_mb 0.5 against
+# 0.93 MB gray frames) lcm-logger drops what waits for the disk, which only its standard
+# output says; nerv_up counts it and says it, while the services still get every frame.
+config drops "$tmp/rec4" 1024 0 0
+printf '    max_unwritten_mb: 0.5\n' >>"$tmp/drops.yaml"
+up drops
+"$BIN/nerv_source" --data "$data" --rate 10 --encoding gray8 --lcm-url "$URL" --drain-timeout 30 \
+  --wait-for "$(IFS=,; echo "${SERVICES[*]}")" 2>"$tmp/source.log" || fail "not every frame came out: $(tail -c 300 "$tmp/source.log")"
+wait_until 10 grep -q "lcm-logger is dropping messages: more than run.record.max_unwritten_mb 0.5 waited for the disk of $tmp/rec4" "$tmp/drops.log" || fail "no drop said: $(cat "$tmp/drops.log")"
+status=$("$BIN/nerv_up" --status --lcm-url "$URL" --listen 1.5 | grep "^nerv_up/" || true)
+[[ "$status" == *"last: lcm-logger is dropping messages"* ]] || fail "nerv_up's report does not carry the drops: $status"
+stop_children
+recorded=$(events STEREO_FRAME "$tmp/rec4"/nerv-*)
+(( recorded < 6 )) || fail "$recorded of 6 frames recorded: nothing was dropped"
+grep -q "\"recording_dropped\"" <("$BIN/nerv_export" "$tmp/rec4"/nerv-* --json --no-blobs) \
+  || fail "no recording_dropped counter in the recorded NERV_HEALTH"
+pass "$recorded of 6 frames recorded with max_unwritten_mb 0.5, said: $(grep -o "at least [0-9]* in all" "$tmp/drops.log" | tail -n 1)"
+
+# 5. A full disk: a 40 MB tmpfs of this test's own mount namespace, min_free_mb 20.
+if ! unshare -m true 2>/dev/null; then echo "SKIP: no mount namespace for the full-disk check" >&2; echo "5 passed"; exit 0; fi
 cat >"$tmp/full.sh" <<EOF
 set -euo pipefail
 source "$NERV_ROOT/tests/integration/lib.sh"
@@ -125,4 +146,4 @@ EOF
 out=$(NERV_IN_NETNS=1 unshare -m bash "$tmp/full.sh" 2>&1) || fail "full disk: $out"
 pass "full disk: $(echo "$out" | tail -n 1)"
 no_survivors || fail "processes survived: $(pgrep -af "^$BIN/|lcm-logger")"
-echo "5 passed, 0 failed"
+echo "6 passed, 0 failed"

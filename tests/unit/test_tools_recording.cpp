@@ -40,7 +40,8 @@ TEST(toolsRecording, OffByDefaultAndReadFromTheConfig) {
   const RecordSettings off = readRecordSettings(ConfigSection(YAML::Node(), "run.record"));
   EXPECT_FALSE(off.enabled());
   const RecordSettings s = readRecordSettings(ConfigSection(
-      YAML::Load("{folder: /var/lib/nerv/recordings, channels: 'DET.*', split_mb: 256, keep_mb: 4096, min_free_mb: 100}"),
+      YAML::Load("{folder: /var/lib/nerv/recordings, channels: 'DET.*', split_mb: 256, keep_mb: 4096, min_free_mb: 100, "
+                 "max_unwritten_mb: 500}"),
       "run.record"));
   EXPECT_TRUE(s.enabled());
   EXPECT_EQ(s.folder, "/var/lib/nerv/recordings");
@@ -48,6 +49,8 @@ TEST(toolsRecording, OffByDefaultAndReadFromTheConfig) {
   EXPECT_EQ(s.split_mb, 256);
   EXPECT_EQ(s.keep_mb, 4096);
   EXPECT_EQ(s.min_free_mb, 100);
+  EXPECT_EQ(s.max_unwritten_mb, 500);
+  EXPECT_EQ(off.max_unwritten_mb, 100);  // lcm-logger's own default
 }
 
 TEST(toolsRecording, BadSettingsNameTheKey) {
@@ -55,6 +58,7 @@ TEST(toolsRecording, BadSettingsNameTheKey) {
   EXPECT_NE(errorOf("{folder: /r, split_mb: 0}").find("'run.record.split_mb'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /r, min_free_mb: -1}").find("'run.record.min_free_mb'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /r, split_mb: .nan}").find("'run.record.split_mb'"), std::string::npos);
+  EXPECT_NE(errorOf("{folder: /r, max_unwritten_mb: 0}").find("'run.record.max_unwritten_mb'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: recordings}").find("must be an absolute path"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /data/100%}").find("'run.record.folder' must not contain '%'"), std::string::npos);
   EXPECT_NE(errorOf("{folder: /r, channels: ''}").find("'run.record.channels' is empty"), std::string::npos);
@@ -74,11 +78,43 @@ TEST(toolsRecording, TheLoggerSplitsIntoFilesNamedByTheirStartInUtc) {
   const auto argv = loggerArgv(s, "/usr/bin/lcm-logger", "udpm://239.255.76.67:7667?ttl=1");
   const std::vector<std::string> expected = {
       "/usr/bin/env", "TZ=UTC0", "/usr/bin/lcm-logger", "--lcm-url=udpm://239.255.76.67:7667?ttl=1",
-      "--channel=FRONT_.*", "--quiet", "-i", "-s", "--split-mb=512",
+      "--channel=FRONT_.*", "--max-unwritten-mb=100", "-i", "-s", "--split-mb=512",
       "/data/rec/nerv-%Y%m%d-%H%M%S.lcmlog"};
   EXPECT_EQ(argv, expected);
   s.split_mb = 0.5;
   EXPECT_EQ(loggerArgv(s, "lcm-logger", "u")[8], "--split-mb=0.5");
+}
+
+// The lines of LCM 1.3.1's lcm-logger, as it prints them without --quiet.
+TEST(toolsRecording, TheLoggersDropsAreReadFromItsOutput) {
+  const LoggerLine dropped = parseLoggerLine("Can't write to log fast enough.  Dropped 12 packets");
+  EXPECT_EQ(dropped.kind, LoggerLine::kDropped);
+  EXPECT_EQ(dropped.dropped, 12);
+  const LoggerLine one = parseLoggerLine("Can't write to log fast enough.  Dropped 1 packet");
+  EXPECT_EQ(one.kind, LoggerLine::kDropped);
+  EXPECT_EQ(one.dropped, 1);
+  const LoggerLine opened = parseLoggerLine("Opening log file \"/data/rec/nerv-20261207-071700.lcmlog.03\"");
+  EXPECT_EQ(opened.kind, LoggerLine::kOpened);
+  EXPECT_EQ(opened.file, "/data/rec/nerv-20261207-071700.lcmlog.03");
+  EXPECT_EQ(parseLoggerLine("Summary: /tmp/x.lcmlog ti:   1sec Events: 3         (    0 MB )      TPS:     1.71       KB/s:     0.30").kind,
+            LoggerLine::kSummary);
+  for (const char* other : {"", "Can't write to log fast enough.  Dropped x packets", "Opening log file \"", "Logger exiting",
+                            "ERROR!  Unable to rotate [/data/rec/x]"}) {
+    EXPECT_EQ(parseLoggerLine(other).kind, LoggerLine::kOther) << other;
+    EXPECT_EQ(parseLoggerLine(other).dropped, 0) << other;
+  }
+}
+
+TEST(toolsRecording, LinesAreWholeWhateverPiecesThePipeGives) {
+  LineSplitter split;
+  auto add = [&](const std::string& piece) { return split.add(piece.data(), piece.size()); };
+  EXPECT_TRUE(add("Open").empty());
+  EXPECT_EQ(add("ing\nSumm"), std::vector<std::string>{"Opening"});
+  EXPECT_EQ(add("ary\n\nCan't\n"), (std::vector<std::string>{"Summary", "", "Can't"}));
+  EXPECT_TRUE(add("").empty());
+  EXPECT_TRUE(add("tail").empty());
+  EXPECT_EQ(split.rest(), "tail");
+  EXPECT_EQ(split.rest(), "");
 }
 
 TEST(toolsRecording, OnlyTheLoggersFilesAreRecordings) {

@@ -22,6 +22,7 @@ RecordSettings readRecordSettings(ConfigSection record) {
   record.get("split_mb", s.split_mb, 1, 1e6);
   record.get("keep_mb", s.keep_mb, 0, 1e9);
   record.get("min_free_mb", s.min_free_mb, 0, 1e9);
+  record.get("max_unwritten_mb", s.max_unwritten_mb, 0.1, 65536);
   record.finish();
   if (s.channels.empty()) throw ConfigError("config key '" + record.path() + ".channels' is empty: use \".*\" for every channel");
   // The newest file is never deleted and grows to split_mb before the next starts: a budget
@@ -42,19 +43,51 @@ RecordSettings readRecordSettings(ConfigSection record) {
 
 std::vector<std::string> loggerArgv(const RecordSettings& s, const std::string& logger_path,
                                     const std::string& lcm_url) {
-  char split[32];
+  char split[32], unwritten[32];
   std::snprintf(split, sizeof split, "%g", s.split_mb);
+  std::snprintf(unwritten, sizeof unwritten, "%g", s.max_unwritten_mb);
   // env TZ=UTC0: the file names' start time in UTC whatever the computer's zone.
   return {"/usr/bin/env",
           "TZ=UTC0",
           logger_path,
           "--lcm-url=" + lcm_url,  // -l URL is broken in LCM 1.3.1
           "--channel=" + s.channels,
-          "--quiet",
+          // Not --quiet: that also silences the only word of its drops (parseLoggerLine).
+          std::string("--max-unwritten-mb=") + unwritten,
           "-i",  // --increment
           "-s",  // --strftime; the long form is ignored by LCM 1.3.1's lcm-logger
           std::string("--split-mb=") + split,
           (fs::path(s.folder) / "nerv-%Y%m%d-%H%M%S.lcmlog").string()};
+}
+
+LoggerLine parseLoggerLine(const std::string& line) {
+  LoggerLine out;
+  static const std::string kDropped = "Can't write to log fast enough.  Dropped ";
+  static const std::string kOpened = "Opening log file \"";
+  if (line.rfind(kDropped, 0) == 0) {
+    char* end = nullptr;
+    const long long n = std::strtoll(line.c_str() + kDropped.size(), &end, 10);
+    if (end != line.c_str() + kDropped.size() && n > 0) {
+      out.kind = LoggerLine::kDropped;
+      out.dropped = n;
+    }
+  } else if (line.rfind(kOpened, 0) == 0 && line.size() > kOpened.size() + 1 && line.back() == '"') {
+    out.kind = LoggerLine::kOpened;
+    out.file = line.substr(kOpened.size(), line.size() - kOpened.size() - 1);
+  } else if (line.rfind("Summary: ", 0) == 0) {
+    out.kind = LoggerLine::kSummary;
+  }
+  return out;
+}
+
+std::vector<std::string> LineSplitter::add(const char* data, size_t n) {
+  std::vector<std::string> lines;
+  partial_.append(data, n);
+  size_t start = 0;
+  for (size_t nl; (nl = partial_.find('\n', start)) != std::string::npos; start = nl + 1)
+    lines.push_back(partial_.substr(start, nl - start));
+  partial_.erase(0, start);
+  return lines;
 }
 
 bool isRecordingName(const std::string& name) {

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config.hpp"
@@ -25,6 +26,7 @@ struct RecordSettings {
   double split_mb = 1024;       // a new file once the current one passes this
   double keep_mb = 0;           // the oldest recordings deleted beyond this total; 0 = never deleted
   double min_free_mb = 2048;    // recording pauses while the disk has less free than this
+  double max_unwritten_mb = 100;  // the logger's queue for a slow disk; beyond it messages are dropped
   bool enabled() const { return !folder.empty(); }
 };
 
@@ -34,6 +36,29 @@ RecordSettings readRecordSettings(ConfigSection record);
 // lcm-logger's command line: files FOLDER/nerv-<UTC start>.lcmlog.NN, a new one every split_mb.
 std::vector<std::string> loggerArgv(const RecordSettings& s, const std::string& logger_path,
                                     const std::string& lcm_url);
+
+// What a line of lcm-logger's standard output says. The logger queues what it receives for
+// its writer thread and drops messages once more than max_unwritten_mb wait (a disk that
+// stalls); it says so only there, on standard output, at most once a second with the
+// drops since its last such line ("Can't write to log fast enough.  Dropped 12 packets"),
+// and only without --quiet. The drops of a last burst are said with the next drop a second
+// later, or never: the count is a lower bound, the line a certainty.
+struct LoggerLine {
+  enum Kind { kOpened, kDropped, kSummary, kOther } kind = kOther;
+  int64_t dropped = 0;  // kDropped: messages lost since the logger's previous such line
+  std::string file;     // kOpened: the file it now writes
+};
+LoggerLine parseLoggerLine(const std::string& line);
+
+// Whole lines out of the bytes read from a pipe in pieces.
+class LineSplitter {
+ public:
+  std::vector<std::string> add(const char* data, size_t n);
+  std::string rest() { return std::exchange(partial_, std::string()); }  // an unterminated last line
+
+ private:
+  std::string partial_;
+};
 
 // A recording file of the folder: the logger's names only (nerv-*.lcmlog*), so nothing
 // else in the folder is ever counted or deleted.

@@ -21,9 +21,12 @@
 // restarted like a service, writes FOLDER/nerv-<UTC start>.lcmlog.NN files of
 // run.record.split_mb each; nerv_up deletes the oldest beyond run.record.keep_mb
 // and stops the logger while the disk has less than run.record.min_free_mb free
-// (recording.hpp). A status line
+// (recording.hpp); it reads the logger's standard output for the messages the logger
+// dropped (more than run.record.max_unwritten_mb waiting for a slow disk), which it
+// counts in its health as recording_dropped. A status line
 // per service is printed every second from NERV_HEALTH. SIGINT/SIGTERM stop
 // every child (SIGTERM, then SIGKILL after 3 s) and exit 0.
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -71,6 +74,9 @@ struct Child {
   ServiceWatchdog watchdog;
   bool hung = false;  // killed by the watchdog, not yet reaped
   bool held = false;  // stopped on purpose (the recorder on a full disk): not restarted until released
+  bool capture_stdout = false;  // the logger: its standard output read by nerv_up (readLoggerOutput)
+  int out_fd = -1;              // the read end of that pipe while the process runs
+  LineSplitter out_lines;
   Clock::time_point started, restart_at;
 };
 
@@ -84,7 +90,7 @@ struct Options {
 struct RecorderState {
   RecordSettings settings;
   std::unique_ptr<RecordingGate> gate;
-  int64_t deleted = 0, pauses = 0;
+  int64_t deleted = 0, pauses = 0, dropped = 0;  // dropped: what the logger said it lost (at least that)
   double recording_mb = 0, free_mb = -1;
   std::string free_error;  // the last failure to read the free space, said once
 };
@@ -172,8 +178,8 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
     h.counter_values.push_back(c.hangs);
   }
   if (recorder) {
-    h.counter_names.insert(h.counter_names.end(), {"recordings_deleted", "recording_paused"});
-    h.counter_values.insert(h.counter_values.end(), {recorder->deleted, recorder->pauses});
+    h.counter_names.insert(h.counter_names.end(), {"recordings_deleted", "recording_paused", "recording_dropped"});
+    h.counter_values.insert(h.counter_values.end(), {recorder->deleted, recorder->pauses, recorder->dropped});
     h.gauge_names = {"recording_mb", "disk_free_mb"};
     h.gauge_values = {recorder->recording_mb, recorder->free_mb};
   }
@@ -187,11 +193,17 @@ void publishSupervisorHealth(lcm::LCM& lcm, const std::string& channel, const st
   lcm.publish(channel, &h);
 }
 
-pid_t spawn(const Child& c) {
+pid_t spawn(Child& c) {
+  int out[2] = {-1, -1};
+  if (c.capture_stdout && pipe2(out, O_CLOEXEC) != 0) {
+    std::fprintf(stderr, "nerv_up: no pipe for %s's output (%s): its drops go unread\n", c.service.c_str(), std::strerror(errno));
+    out[0] = out[1] = -1;
+  }
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
     prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the supervisor, even after kill -9
+    if (out[1] >= 0) dup2(out[1], STDOUT_FILENO);  // dup2 clears close-on-exec on the copy
     std::vector<char*> args;
     for (const auto& a : c.argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
@@ -199,7 +211,56 @@ pid_t spawn(const Child& c) {
     std::fprintf(stderr, "nerv_up: cannot start %s: %s\n", args[0], std::strerror(errno));
     _exit(127);
   }
+  if (out[1] >= 0) close(out[1]);
+  if (out[0] >= 0) {
+    if (pid < 0) close(out[0]);
+    else {
+      fcntl(out[0], F_SETFL, fcntl(out[0], F_GETFL) | O_NONBLOCK);
+      c.out_fd = out[0];
+    }
+  }
   return pid;
+}
+
+// What the logger printed since the last call: its drops counted and said, the file it
+// opened said, anything unexpected passed on; its once-a-second summaries are not.
+// `closing` reads to the end and closes the pipe (the logger has exited).
+void readLoggerOutput(Child& c, RecorderState& r, std::string& last_event, bool& event, bool closing) {
+  if (c.out_fd < 0) return;
+  std::vector<std::string> lines;
+  char buf[4096];
+  for (ssize_t n; (n = read(c.out_fd, buf, sizeof buf)) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;  // EAGAIN: nothing more for now
+    }
+    for (auto& l : c.out_lines.add(buf, static_cast<size_t>(n))) lines.push_back(std::move(l));
+  }
+  if (closing) {
+    if (std::string rest = c.out_lines.rest(); !rest.empty()) lines.push_back(rest);
+    close(c.out_fd);
+    c.out_fd = -1;
+  }
+  for (const std::string& line : lines) {
+    const LoggerLine said = parseLoggerLine(line);
+    if (said.kind == LoggerLine::kDropped) {
+      r.dropped += said.dropped;
+      char text[512];
+      // The logger says its drops at most once a second, those since its last such line, and
+      // the rest of a burst only with a later drop: a lower bound.
+      std::snprintf(text, sizeof text,
+                    "lcm-logger is dropping messages: more than run.record.max_unwritten_mb %g waited for the disk "
+                    "of %s (it says %lld since its last word, at least %lld in all); the recording has gaps",
+                    r.settings.max_unwritten_mb, r.settings.folder.c_str(), (long long)said.dropped, (long long)r.dropped);
+      std::fprintf(stderr, "nerv_up: %s\n", text);
+      last_event = text;
+      event = true;
+    } else if (said.kind == LoggerLine::kOpened) {
+      std::fprintf(stderr, "nerv_up: recording into %s\n", said.file.c_str());
+    } else if (said.kind == LoggerLine::kOther && !line.empty()) {
+      std::fprintf(stderr, "nerv_up: lcm-logger: %s\n", line.c_str());
+    }
+  }
 }
 
 // Once a second: the oldest recordings beyond keep_mb deleted, and the logger stopped while
@@ -342,6 +403,7 @@ int up(const Options& flags) {
     c.service = "lcm-logger";
     c.instance = "0";
     c.reports_health = false;
+    c.capture_stdout = true;
     c.argv = loggerArgv(record, logger, url);
     children.push_back(c);
   }
@@ -382,10 +444,13 @@ int up(const Options& flags) {
   auto last_report = Clock::now() - std::chrono::seconds(1);
   while (!g_stop) {
     lcm.handleTimeout(50);
+    if (recorder)
+      for (auto& c : children) readLoggerOutput(c, *recorder, last_event, event_since_report, /*closing*/ false);
     for (auto& c : children) {
       if (c.pid > 0) {
         int wstatus = 0;
         if (waitpid(c.pid, &wstatus, WNOHANG) == c.pid) {
+          if (recorder) readLoggerOutput(c, *recorder, last_event, event_since_report, /*closing*/ true);
           const double ran = std::chrono::duration<double>(Clock::now() - c.started).count();
           if (ran > 30) c.backoff_s = backoff0;
           char event[256];
@@ -463,6 +528,8 @@ int up(const Options& flags) {
       } else std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
+  if (recorder)  // the logger's last words, e.g. drops of the last second
+    for (auto& c : children) readLoggerOutput(c, *recorder, last_event, event_since_report, /*closing*/ true);
   std::fprintf(stderr, "nerv_up: all services stopped\n");
   return 0;
 }
