@@ -19,8 +19,21 @@ namespace nerv::stereo {
 void reverseCensusRow(const uint32_t* right, int cols, int min_disparity, int num_disparities,
                       uint32_t* reversed);
 
-// Costs of columns [x0, x1) of one row: out has (x1 - x0) * D bytes.
+// Costs of columns [x0, x1) of one row: out has (x1 - x0) * D bytes. Runs
+// censusCostRangeAvx2 on a CPU target with AVX2 but without AVX-512 VPOPCNTDQ (most
+// vehicle computers, and any package built for x86-64-v3), else the plain loop, which
+// the compiler vectorises on vpopcntd where it has it and leaves scalar where not: the
+// plain loop on an AVX2 target took the matcher from 24 to 57 ms a KITTI frame.
 void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                      int min_disparity, int num_disparities, uint8_t* out);
+
+// The plain loop, and the AVX2 one (32 costs at a time: a nibble table per byte, bytes
+// summed per lane, packed to bytes), which give the same bytes.
+void censusCostRangeScalar(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
+                           int min_disparity, int num_disparities, uint8_t* out);
+#if defined(__AVX2__)
+void censusCostRangeAvx2(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
+                         int min_disparity, int num_disparities, uint8_t* out);
+#endif
 
 }  // namespace nerv::stereo

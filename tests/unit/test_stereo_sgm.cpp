@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "census_transform.hpp"
+#include "cost_volume.hpp"
 #include "own_sgm.hpp"
 #include "path_aggregation.hpp"
 #include "winner_subpixel.hpp"
@@ -275,6 +276,36 @@ TEST(stereoSgm, PathStepSimdEqualsScalar) {
     ASSERT_EQ(ma, mb) << "D " << D;
   }
   }
+}
+
+// The AVX2 cost loop (the path of AVX2 targets without AVX-512 VPOPCNTDQ) gives the plain
+// loop's bytes: any 32-bit codes (not only 31-bit census), D a multiple of 32 or not,
+// min_disparity > 0, a column range that does not start at 0.
+TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
+#if defined(__AVX2__)
+  std::mt19937 rng(7);
+  const int cols = 97;
+  for (const int D : {32, 64, 128, 40, 7}) {
+    for (const int min_d : {0, 3}) {
+      std::vector<uint32_t> left(cols), right(cols), reversed(cols + min_d + D);
+      for (auto& v : left) v = rng();
+      for (auto& v : right) v = rng();
+      left[10] = 0xffffffffu;  // against the zero padding below: 32 ones, the largest count
+      right[0] = 0;
+      reverseCensusRow(right.data(), cols, min_d, D, reversed.data());
+      const int x0 = 9, x1 = cols;
+      std::vector<uint8_t> a((x1 - x0) * D), b((x1 - x0) * D, 0xee);
+      censusCostRangeScalar(left.data(), reversed.data(), cols, x0, x1, min_d, D, a.data());
+      censusCostRangeAvx2(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
+      ASSERT_EQ(a, b) << "D " << D << " min_disparity " << min_d;
+      censusCostRange(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
+      ASSERT_EQ(a, b) << "dispatch, D " << D;
+      if (min_d == 0 && D == 128) EXPECT_EQ(b[(10 - x0) * D + D - 1], 32);  // x - D < 0: the padding, right[0]
+    }
+  }
+#else
+  GTEST_SKIP() << "built without AVX2";
+#endif
 }
 
 TEST(stereoSgm, SimdMatcherEqualsScalarMatcher) {
