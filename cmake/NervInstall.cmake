@@ -13,11 +13,18 @@ set(NERV_INSTALL_TARGETS
     nerv_stereo_matcher_service nerv_stixel_service nerv_snv_extrinsic_service nerv_validator_service
     nerv_up nerv_source nerv_export nerv_diff nerv_render nerv_report nerv_eval_detections
     nerv_eval_disparity nerv_unrectify nerv_misalign nerv_synth_cli)
+# `cmake --build B --target nerv_installable`: only what is installed (tools/nerv package
+# --march builds that, not the tests and benches).
+add_custom_target(nerv_installable)
 foreach(target ${NERV_INSTALL_TARGETS})
   if(TARGET ${target})
     install(TARGETS ${target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    add_dependencies(nerv_installable ${target})
   endif()
 endforeach()
+if(TARGET nerv_types_jar)
+  add_dependencies(nerv_installable nerv_types_jar)
+endif()
 
 set(NERV_SHARE ${CMAKE_INSTALL_DATADIR}/nerv)
 install(FILES ${CMAKE_SOURCE_DIR}/config/pipeline.yaml DESTINATION ${NERV_SHARE}/config)
@@ -29,6 +36,8 @@ if(NERV_TYPES_JAR)
 endif()
 
 # The unit and the config it names refer to the installed paths (the prefix given at install).
+# file(INSTALL) puts DESTDIR (a staged install, tools/package/make_deb.sh) before an absolute
+# destination itself; EXISTS does not.
 install(CODE "
   set(prefix \"\${CMAKE_INSTALL_PREFIX}\")
   set(NERV_BINDIR \"\${prefix}/${CMAKE_INSTALL_BINDIR}\")
@@ -40,12 +49,12 @@ install(CODE "
   set(NERV_CONFIG \"\${etc}/nerv/pipeline.yaml\")
   configure_file(\"${CMAKE_SOURCE_DIR}/deploy/nerv.service.in\" \"${CMAKE_BINARY_DIR}/deploy/nerv.service\" @ONLY)
   file(INSTALL \"${CMAKE_BINARY_DIR}/deploy/nerv.service\"
-       DESTINATION \"\$ENV{DESTDIR}\${prefix}/lib/systemd/system\")
+       DESTINATION \"\${prefix}/lib/systemd/system\")
   file(INSTALL \"${CMAKE_SOURCE_DIR}/deploy/60-nerv-lcm.conf\"
-       DESTINATION \"\$ENV{DESTDIR}\${prefix}/lib/sysctl.d\")
+       DESTINATION \"\${prefix}/lib/sysctl.d\")
   if(EXISTS \"\$ENV{DESTDIR}\${NERV_CONFIG}\")
     message(STATUS \"Kept: \$ENV{DESTDIR}\${NERV_CONFIG} (already there)\")
   else()
-    file(INSTALL \"${CMAKE_SOURCE_DIR}/config/pipeline.yaml\" DESTINATION \"\$ENV{DESTDIR}\${etc}/nerv\")
+    file(INSTALL \"${CMAKE_SOURCE_DIR}/config/pipeline.yaml\" DESTINATION \"\${etc}/nerv\")
   endif()
 ")

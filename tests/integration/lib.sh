@@ -79,6 +79,21 @@ run_pipeline() {  # run_pipeline NAME DATA [ARGS...]: tools/nerv run of DATA int
     || fail "$name: nerv run exited with $?: $(tail -n 3 "$tmp/$name.txt")"
 }
 
+# An installed nerv (a prefix, an unpacked package) runs on its own: its nerv_up with its
+# config, its nerv_source sending 6 urban frames; fails unless every one is detected.
+# Sets INSTALLED_RUN to the source's last words ("sent 6 frames in ... s, 6 with DETECTIONS");
+# not called in $(...), so a failure ends the test and its children are stopped.
+run_installed_pipeline() {  # run_installed_pipeline BINDIR CONFIG WORKDIR
+  local bin=$1 config=$2 work=$3 data
+  data=$(synthetic_sequence urban 6)
+  start_child "$work/up.log" "$bin/nerv_up" --config "$config" --lcm-url "$URL" --quiet
+  "$bin/nerv_source" --data "$data" --rate 5 --lcm-url "$URL" --drain-timeout 20 \
+    --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$work/source.log" \
+    || fail "the pipeline of $bin did not detect every frame: $(tail -c 300 "$work/source.log"; cat "$work/up.log")"
+  stop_children
+  INSTALLED_RUN=$(tail -n1 "$work/source.log" | grep -o 'sent [0-9]* frames.*')
+}
+
 no_survivors() {  # no process of this build left running
   ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "$LOGGER_PATTERN" >/dev/null
 }

@@ -35,13 +35,8 @@ pass "a second install keeps the edited etc/nerv/pipeline.yaml"
 # nerv_up finds the services next to itself).
 mv "$p" "$tmp/moved"
 p="$tmp/moved"
-data=$(synthetic_sequence urban 6)
-start_child "$tmp/up.log" "$p/bin/nerv_up" --config "$p/etc/nerv/pipeline.yaml" --lcm-url "$URL" --quiet
-"$p/bin/nerv_source" --data "$data" --rate 5 --lcm-url "$URL" --drain-timeout 20 \
-  --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source.log" \
-  || fail "the installed pipeline did not detect every frame: $(tail -c 300 "$tmp/source.log"; cat "$tmp/up.log")"
-pass "the installed nerv_up and services, moved elsewhere: $(tail -n1 "$tmp/source.log" | grep -o 'sent [0-9]* frames.*')"
-stop_children
+run_installed_pipeline "$p/bin" "$p/etc/nerv/pipeline.yaml" "$tmp"
+pass "the installed nerv_up and services, moved elsewhere: $INSTALLED_RUN"
 no_survivors || fail "processes survived"
 pgrep -f "^$p/bin/" >/dev/null && fail "installed processes survived"
 echo "3 passed, 0 failed"
