@@ -168,6 +168,10 @@ EOF
 chmod 0755 "$stage/DEBIAN/preinst" "$stage/DEBIAN/postinst" "$stage/DEBIAN/prerm" "$stage/DEBIAN/postrm"
 (cd "$stage" && find . -path ./DEBIAN -prune -o -type f -print | sed 's|^\./||' | sort | xargs md5sum) >"$stage/DEBIAN/md5sums"
 
+if [[ "$march" == native ]]; then
+  echo "nerv package: built with -march=native: it installs only where the CPU has ${required[*]}" \
+       "(preinst checks); for a fleet: tools/nerv package --march x86-64-v3" >&2
+fi
 mkdir -p "$out"
 deb="$out/nerv_${version}_${arch}.deb"
 dpkg-deb --root-owner-group -Zxz --build "$stage" "$deb" >/dev/null
