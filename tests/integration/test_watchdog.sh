@@ -2,7 +2,8 @@
 # A hung service is restarted: a process that still exists but has stopped sending
 # NERV_HEALTH (kill -STOP here; a deadlock or a frame it never finishes in a car) is
 # killed by nerv_up's watchdog and started again, and a pipeline at work is never
-# taken for hung. nerv_up's own NERV_HEALTH says how often and why it restarted what.
+# taken for hung. nerv_up's own NERV_HEALTH says how often and why it restarted what, and a
+# service that dies of SIGILL is named as a build for another CPU.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
 tmp=$(mktemp -d)
@@ -55,6 +56,12 @@ supervisor() { "$BIN/nerv_up" --status --listen 1.5 2>/dev/null | grep "^nerv_up
 wait_until 10 bash -c "$(declare -f supervisor); BIN='$BIN' host='$host' supervisor | grep -q 'errors 1 .*last: validator/0 (pid $victim) killed by signal 9 (hung)'" \
   || fail "nerv_up's report does not show the restart: $(supervisor)"
 pass "nerv_up's own report: $(supervisor | sed 's/  */ /g')"
+# A service that dies of SIGILL (a build for another CPU) is said to, with the build's -march.
+ill=$(pgrep -f "^$BIN/stixel ")
+kill -ILL "$ill"
+wait_until 10 grep -q "stixel/0 (pid $ill) killed by signal 4 (illegal instruction: built with -march=" "$tmp/up.log" \
+  || fail "SIGILL not named: $(grep "pid $ill" "$tmp/up.log")"
+pass "$(grep -o "stixel/0 (pid $ill) killed by signal 4 (illegal instruction: [^)]*)" "$tmp/up.log")"
 stop_children
 no_survivors || fail "processes survived"
-echo "2 passed, 0 failed"
+echo "3 passed, 0 failed"

@@ -53,6 +53,10 @@
 #include "recording.hpp"
 #include "service_watchdog.hpp"
 
+#ifndef NERV_MARCH_NAME
+#define NERV_MARCH_NAME "?"
+#endif
+
 using namespace nerv;
 using Clock = std::chrono::steady_clock;
 
@@ -453,11 +457,17 @@ int up(const Options& flags) {
           if (recorder) readLoggerOutput(c, *recorder, last_event, event_since_report, /*closing*/ true);
           const double ran = std::chrono::duration<double>(Clock::now() - c.started).count();
           if (ran > 30) c.backoff_s = backoff0;
-          char event[256];
-          std::snprintf(event, sizeof event, "%s/%s (pid %d) %s %d%s; restart in %.1f s", c.service.c_str(),
+          char event[512];
+          // SIGILL: an instruction this CPU lacks, a build made for another one (copied by hand;
+          // the Debian package's preinst refuses such a computer). Restarts cannot mend it.
+          const bool illegal = WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGILL;
+          std::snprintf(event, sizeof event, "%s/%s (pid %d) %s %d%s%s; restart in %.1f s", c.service.c_str(),
                         c.instance.c_str(), c.pid, WIFSIGNALED(wstatus) ? "killed by signal" : "exited with",
-                        WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
-                        c.hung ? " (hung)" : "", c.backoff_s);
+                        WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus), c.hung ? " (hung)" : "",
+                        illegal ? " (illegal instruction: built with -march=" NERV_MARCH_NAME
+                                  " for another CPU? build nerv on this computer, or with a -march it has)"
+                                : "",
+                        c.backoff_s);
           if (c.held) {  // stopped by checkRecording, which said why
             c.pid = -1;
             continue;
