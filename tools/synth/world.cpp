@@ -8,9 +8,9 @@ void Solid::computeBounds() {
   lo = Vec3::Constant(1e30);
   hi = Vec3::Constant(-1e30);
   for (const Part& p : parts) {
-    Vec3 e;
+    Vec3 e = p.e;  // a box's half extents; set before the switch, so GCC 12 sees it set on every path
     switch (p.shape) {
-      case Shape::Box: e = p.e; break;
+      case Shape::Box: break;
       case Shape::CylinderY: e = Vec3(p.e.x(), p.e.y(), p.e.x()); break;
       case Shape::CylinderX: e = Vec3(p.e.x(), p.e.y(), p.e.y()); break;
       case Shape::Sphere: e = Vec3::Constant(p.e.x()); break;
