@@ -278,8 +278,8 @@ TEST(stereoSgm, PathStepSimdEqualsScalar) {
   }
 }
 
-// The AVX2 cost loop (the path of AVX2 targets without AVX-512 VPOPCNTDQ) gives the plain
-// loop's bytes: any 32-bit codes (not only 31-bit census), D a multiple of 32 or not,
+// The AVX2 cost loop (the path of AVX2 targets without AVX-512 VPOPCNTDQ) and the SSE4.1
+// one (targets without AVX2) give the plain loop's bytes: any 32-bit codes (not only 31-bit census), D a multiple of 32 or not,
 // min_disparity > 0, a column range that does not start at 0.
 TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
 #if defined(__AVX2__)
@@ -298,9 +298,14 @@ TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
       censusCostRangeScalar(left.data(), reversed.data(), cols, x0, x1, min_d, D, a.data());
       censusCostRangeAvx2(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
       ASSERT_EQ(a, b) << "D " << D << " min_disparity " << min_d;
+      std::fill(b.begin(), b.end(), 0xee);
+      censusCostRangeSse41(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
+      ASSERT_EQ(a, b) << "SSE4.1, D " << D << " min_disparity " << min_d;
       censusCostRange(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
       ASSERT_EQ(a, b) << "dispatch, D " << D;
-      if (min_d == 0 && D == 128) EXPECT_EQ(b[(10 - x0) * D + D - 1], 32);  // x - D < 0: the padding, right[0]
+      if (min_d == 0 && D == 128) {
+        EXPECT_EQ(b[(10 - x0) * D + D - 1], 32);  // x - D < 0: the padding, right[0]
+      }
     }
   }
 #else
