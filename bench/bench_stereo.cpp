@@ -20,6 +20,7 @@
 #include "disparity_offset.hpp"
 #include "rig_check.hpp"
 #include "shutter_sync.hpp"
+#include "own_sgm.hpp"
 #include "stereo_matcher.hpp"
 
 using namespace nerv::stereo;
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
   const char* metric = kind == "kitti" ? "D1" : "bad-2.0";
   std::printf("data %s frame %s (%dx%d), %d runs, median; metric %s after background "
               "interpolation\n", data.c_str(), f.name.c_str(), left.cols, left.rows, runs, metric);
+  std::printf("nerv_sgm: %s\n", nerv::stereo::ownSgmCodePaths());
 
   struct Entry { std::string label; Params params; };
   std::vector<Entry> entries;

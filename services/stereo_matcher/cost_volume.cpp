@@ -96,6 +96,18 @@ void censusCostRangeSse41(const uint32_t* left, const uint32_t* right_reversed, 
 }
 #endif
 
+const char* censusCostPath() {
+#if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)
+  return "AVX2";
+#elif defined(__SSE4_1__) && !defined(__AVX2__)
+  return "SSE4.1";
+#elif defined(__AVX512VPOPCNTDQ__)
+  return "AVX-512 VPOPCNTDQ";
+#else
+  return "portable loop";
+#endif
+}
+
 void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                      int min_disparity, int num_disparities, uint8_t* out) {
 #if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)

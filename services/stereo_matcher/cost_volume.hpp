@@ -27,6 +27,9 @@ void reverseCensusRow(const uint32_t* right, int cols, int min_disparity, int nu
 void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                      int min_disparity, int num_disparities, uint8_t* out);
 
+// Which of the loops below censusCostRange runs in this build.
+const char* censusCostPath();
+
 // The plain loop, and the AVX2 one (32 costs at a time: a nibble table per byte, bytes
 // summed per lane, packed to bytes), which give the same bytes.
 void censusCostRangeScalar(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,

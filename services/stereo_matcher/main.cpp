@@ -13,6 +13,7 @@
 #include "rig_check.hpp"
 #include "rig_state.hpp"
 #include "service_config.hpp"
+#include "own_sgm.hpp"
 #include "stereo_matcher.hpp"
 
 using namespace nerv;
@@ -86,6 +87,7 @@ int serve(ServiceConfig& config) {
 
   Node node(config.nodeOptions());
   auto matcher = stereo::StereoMatcher::create(params);
+  if (params.algorithm == "nerv_sgm") std::fprintf(stderr, "stereo_matcher: nerv_sgm: %s\n", stereo::ownSgmCodePaths());
   Rectifier rectifier;
   cv::Mat left, right, left_rect, right_rect, disparity, confidence;
   cv::Mat matched_left, matched_right;  // the gray views the matcher saw

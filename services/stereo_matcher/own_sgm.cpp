@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -364,6 +365,13 @@ class OwnSgm : public StereoMatcher {
 };
 
 }  // namespace
+
+const char* ownSgmCodePaths() {
+  static const std::string text = std::string(pathSimdAvailable() ? "path steps and winners AVX2"
+                                                                   : "path steps and winners in portable loops (no AVX2)") +
+                                  ", census costs " + censusCostPath();
+  return text.c_str();
+}
 
 std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd, int segment_rows) {
   return std::make_unique<OwnSgm>(params, use_simd, segment_rows);

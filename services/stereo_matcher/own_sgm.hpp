@@ -33,6 +33,12 @@ namespace nerv::stereo {
 // L3); 4 and 16 measured no faster than 8 (docs/stereo.md).
 constexpr int kSgmSegmentRows = 8;
 
+// Which code this build runs, for the service's start line and bench_stereo: e.g.
+// "path steps and winners AVX2, census costs AVX-512 VPOPCNTDQ". Without AVX2 the path
+// steps and winners run the portable loops, 3-4 times slower (docs/stereo.md "CPUs
+// without AVX-512 VPOPCNTDQ"), which is worth knowing when a matcher is slow.
+const char* ownSgmCodePaths();
+
 // use_simd = false runs the scalar aggregation (the SIMD-vs-scalar test);
 // segment_rows: k, other than kSgmSegmentRows only in tests.
 std::unique_ptr<StereoMatcher> createOwnSgm(const Params& params, bool use_simd = true,

@@ -313,6 +313,18 @@ TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
 #endif
 }
 
+// The start line names the code this build runs (a slow matcher on a CPU without AVX2
+// says why in its first line).
+TEST(stereoSgm, CodePathsNameTheBuild) {
+  const std::string paths = ownSgmCodePaths();
+#if defined(__AVX2__)
+  EXPECT_NE(paths.find("path steps and winners AVX2"), std::string::npos) << paths;
+#else
+  EXPECT_NE(paths.find("portable loops (no AVX2)"), std::string::npos) << paths;
+#endif
+  EXPECT_NE(paths.find(std::string("census costs ") + censusCostPath()), std::string::npos) << paths;
+}
+
 TEST(stereoSgm, SimdMatcherEqualsScalarMatcher) {
   const OcclusionScene s = occlusionScene();
   Params p;
