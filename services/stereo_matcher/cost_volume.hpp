@@ -43,5 +43,10 @@ void censusCostRangeAvx2(const uint32_t* left, const uint32_t* right_reversed, i
 void censusCostRangeSse41(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                           int min_disparity, int num_disparities, uint8_t* out);
 #endif
+// And on ARM (NEON: Jetson-class vehicle computers), where GCC leaves the plain loop scalar.
+#if defined(__ARM_NEON)
+void censusCostRangeNeon(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
+                         int min_disparity, int num_disparities, uint8_t* out);
+#endif
 
 }  // namespace nerv::stereo

@@ -278,14 +278,25 @@ TEST(stereoSgm, PathStepSimdEqualsScalar) {
   }
 }
 
-// The AVX2 cost loop (the path of AVX2 targets without AVX-512 VPOPCNTDQ) and the SSE4.1
-// one (targets without AVX2) give the plain loop's bytes: any 32-bit codes (not only 31-bit census), D a multiple of 32 or not,
-// min_disparity > 0, a column range that does not start at 0.
-TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
+// The cost loops for other targets give the plain loop's bytes: AVX2 (targets without
+// AVX-512 VPOPCNTDQ), SSE4.1 (without AVX2) and NEON (ARM), each where this build has it;
+// any 32-bit codes (not only 31-bit census), D a multiple of 32 or 16 or neither,
+// min_disparity > 0, a column range that does not start at 0. So does the dispatcher.
+TEST(stereoSgm, CensusCostSimdEqualsScalar) {
+  using CostLoop = void (*)(const uint32_t*, const uint32_t*, int, int, int, int, int, uint8_t*);
+  std::vector<std::pair<const char*, CostLoop>> loops = {{"dispatch", censusCostRange}};
 #if defined(__AVX2__)
+  loops.push_back({"AVX2", censusCostRangeAvx2});
+#endif
+#if defined(__SSE4_1__)
+  loops.push_back({"SSE4.1", censusCostRangeSse41});
+#endif
+#if defined(__ARM_NEON)
+  loops.push_back({"NEON", censusCostRangeNeon});
+#endif
   std::mt19937 rng(7);
   const int cols = 97;
-  for (const int D : {32, 64, 128, 40, 7}) {
+  for (const int D : {32, 64, 128, 16, 40, 7}) {
     for (const int min_d : {0, 3}) {
       std::vector<uint32_t> left(cols), right(cols), reversed(cols + min_d + D);
       for (auto& v : left) v = rng();
@@ -294,23 +305,18 @@ TEST(stereoSgm, CensusCostAvx2EqualsScalar) {
       right[0] = 0;
       reverseCensusRow(right.data(), cols, min_d, D, reversed.data());
       const int x0 = 9, x1 = cols;
-      std::vector<uint8_t> a((x1 - x0) * D), b((x1 - x0) * D, 0xee);
+      std::vector<uint8_t> a((x1 - x0) * D);
       censusCostRangeScalar(left.data(), reversed.data(), cols, x0, x1, min_d, D, a.data());
-      censusCostRangeAvx2(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
-      ASSERT_EQ(a, b) << "D " << D << " min_disparity " << min_d;
-      std::fill(b.begin(), b.end(), 0xee);
-      censusCostRangeSse41(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
-      ASSERT_EQ(a, b) << "SSE4.1, D " << D << " min_disparity " << min_d;
-      censusCostRange(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
-      ASSERT_EQ(a, b) << "dispatch, D " << D;
       if (min_d == 0 && D == 128) {
-        EXPECT_EQ(b[(10 - x0) * D + D - 1], 32);  // x - D < 0: the padding, right[0]
+        EXPECT_EQ(a[(10 - x0) * D + D - 1], 32);  // x - D < 0: the padding, right[0]
+      }
+      for (const auto& [name, loop] : loops) {
+        std::vector<uint8_t> b((x1 - x0) * D, 0xee);
+        loop(left.data(), reversed.data(), cols, x0, x1, min_d, D, b.data());
+        ASSERT_EQ(a, b) << name << ", D " << D << " min_disparity " << min_d;
       }
     }
   }
-#else
-  GTEST_SKIP() << "built without AVX2";
-#endif
 }
 
 // The start line names the code this build runs (a slow matcher on a CPU without AVX2
