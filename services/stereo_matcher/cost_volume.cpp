@@ -17,6 +17,27 @@ void reverseCensusRow(const uint32_t* right, int cols, int min_disparity, int nu
   std::fill(reversed + cols, reversed + cols + min_disparity + num_disparities, right[0]);
 }
 
+namespace {
+
+// The walk every vector loop shares: each column's D costs, `Step` at a time by `block`
+// (block(l, r, c) writes the Step costs of code l against r[0..Step) to c), the rest one
+// by one. The plain loop below stays a loop of its own: GCC vectorises it on vpopcntd.
+template <int Step, typename Block>
+inline void costWalk(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
+                     int min_disparity, int num_disparities, uint8_t* out, Block block) {
+  const int vector_end = num_disparities - num_disparities % Step;
+  for (int x = x0; x < x1; ++x) {
+    const uint32_t l = left[x];
+    const uint32_t* r = right_reversed + (cols - 1 - x) + min_disparity;
+    uint8_t* c = out + static_cast<size_t>(x - x0) * num_disparities;
+    int d = 0;
+    for (; d < vector_end; d += Step) block(l, r + d, c + d);
+    for (; d < num_disparities; ++d) c[d] = static_cast<uint8_t>(__builtin_popcount(l ^ r[d]));
+  }
+}
+
+}  // namespace
+
 void censusCostRangeScalar(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                            int min_disparity, int num_disparities, uint8_t* out) {
   for (int x = x0; x < x1; ++x) {
@@ -49,24 +70,17 @@ void censusCostRangeAvx2(const uint32_t* left, const uint32_t* right_reversed, i
   // packus works per 128-bit half: the 32 bytes come out as dwords a0-3 b0-3 c0-3 e0-3 |
   // a4-7 b4-7 c4-7 e4-7, put back in disparity order by one dword permute.
   const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
-  const int vector_end = num_disparities - num_disparities % 32;
-  for (int x = x0; x < x1; ++x) {
-    const uint32_t l = left[x];
-    const __m256i lv = _mm256_set1_epi32(static_cast<int>(l));
-    const uint32_t* r = right_reversed + (cols - 1 - x) + min_disparity;
-    uint8_t* c = out + static_cast<size_t>(x - x0) * num_disparities;
-    int d = 0;
-    for (; d < vector_end; d += 32) {
-      auto lanes = [&](int k) {
-        return popcountLanes(_mm256_xor_si256(lv, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(r + d + k))));
-      };
-      const __m256i ab = _mm256_packus_epi32(lanes(0), lanes(8));
-      const __m256i ce = _mm256_packus_epi32(lanes(16), lanes(24));
-      const __m256i bytes = _mm256_permutevar8x32_epi32(_mm256_packus_epi16(ab, ce), order);
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(c + d), bytes);
-    }
-    for (; d < num_disparities; ++d) c[d] = static_cast<uint8_t>(__builtin_popcount(l ^ r[d]));
-  }
+  costWalk<32>(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out,
+               [&](uint32_t l, const uint32_t* r, uint8_t* c) {
+                 const __m256i lv = _mm256_set1_epi32(static_cast<int>(l));
+                 auto lanes = [&](int k) {
+                   return popcountLanes(_mm256_xor_si256(lv, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(r + k))));
+                 };
+                 const __m256i ab = _mm256_packus_epi32(lanes(0), lanes(8));
+                 const __m256i ce = _mm256_packus_epi32(lanes(16), lanes(24));
+                 const __m256i bytes = _mm256_permutevar8x32_epi32(_mm256_packus_epi16(ab, ce), order);
+                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(c), bytes);
+               });
 }
 #endif
 
@@ -77,76 +91,64 @@ void censusCostRangeSse41(const uint32_t* left, const uint32_t* right_reversed, 
   // here packus keeps the order, so nothing is permuted.
   const __m128i table = _mm_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
   const __m128i nibble = _mm_set1_epi8(0x0f), ones8 = _mm_set1_epi8(1), ones16 = _mm_set1_epi16(1);
-  const int vector_end = num_disparities - num_disparities % 16;
-  for (int x = x0; x < x1; ++x) {
-    const uint32_t l = left[x];
-    const __m128i lv = _mm_set1_epi32(static_cast<int>(l));
-    const uint32_t* r = right_reversed + (cols - 1 - x) + min_disparity;
-    uint8_t* c = out + static_cast<size_t>(x - x0) * num_disparities;
-    int d = 0;
-    for (; d < vector_end; d += 16) {
-      auto lanes = [&](int k) {
-        const __m128i v = _mm_xor_si128(lv, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r + d + k)));
-        const __m128i bytes = _mm_add_epi8(_mm_shuffle_epi8(table, _mm_and_si128(v, nibble)),
-                                           _mm_shuffle_epi8(table, _mm_and_si128(_mm_srli_epi16(v, 4), nibble)));
-        return _mm_madd_epi16(_mm_maddubs_epi16(bytes, ones8), ones16);
-      };
-      const __m128i packed = _mm_packus_epi16(_mm_packus_epi32(lanes(0), lanes(4)), _mm_packus_epi32(lanes(8), lanes(12)));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(c + d), packed);
-    }
-    for (; d < num_disparities; ++d) c[d] = static_cast<uint8_t>(__builtin_popcount(l ^ r[d]));
-  }
+  costWalk<16>(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out,
+               [&](uint32_t l, const uint32_t* r, uint8_t* c) {
+                 const __m128i lv = _mm_set1_epi32(static_cast<int>(l));
+                 auto lanes = [&](int k) {
+                   const __m128i v = _mm_xor_si128(lv, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r + k)));
+                   const __m128i bytes = _mm_add_epi8(_mm_shuffle_epi8(table, _mm_and_si128(v, nibble)),
+                                                      _mm_shuffle_epi8(table, _mm_and_si128(_mm_srli_epi16(v, 4), nibble)));
+                   return _mm_madd_epi16(_mm_maddubs_epi16(bytes, ones8), ones16);
+                 };
+                 const __m128i packed =
+                     _mm_packus_epi16(_mm_packus_epi32(lanes(0), lanes(4)), _mm_packus_epi32(lanes(8), lanes(12)));
+                 _mm_storeu_si128(reinterpret_cast<__m128i*>(c), packed);
+               });
 }
 #endif
 
-const char* censusCostPath() {
-#if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)
-  return "AVX2";
-#elif defined(__SSE4_1__) && !defined(__AVX2__)
-  return "SSE4.1";
-#elif defined(__AVX512VPOPCNTDQ__)
-  return "AVX-512 VPOPCNTDQ";
-#elif defined(__ARM_NEON)
-  return "NEON";
-#else
-  return "portable loop";
-#endif
-}
 
 #if defined(__ARM_NEON)
 void censusCostRangeNeon(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                          int min_disparity, int num_disparities, uint8_t* out) {
   // 16 costs a step: the count of each byte (cnt), then adjacent bytes summed twice
   // (pairwise add across two registers), which leaves each code's four bytes summed, in order.
-  const int vector_end = num_disparities - num_disparities % 16;
-  for (int x = x0; x < x1; ++x) {
-    const uint32_t l = left[x];
-    const uint32x4_t lv = vdupq_n_u32(l);
-    const uint32_t* r = right_reversed + (cols - 1 - x) + min_disparity;
-    uint8_t* c = out + static_cast<size_t>(x - x0) * num_disparities;
-    int d = 0;
-    for (; d < vector_end; d += 16) {
-      auto bytes = [&](int k) { return vcntq_u8(vreinterpretq_u8_u32(veorq_u32(lv, vld1q_u32(r + d + k)))); };
-      const uint8x16_t ab = vpaddq_u8(bytes(0), bytes(4)), ce = vpaddq_u8(bytes(8), bytes(12));
-      vst1q_u8(c + d, vpaddq_u8(ab, ce));
-    }
-    for (; d < num_disparities; ++d) c[d] = static_cast<uint8_t>(__builtin_popcount(l ^ r[d]));
-  }
+  costWalk<16>(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out,
+               [](uint32_t l, const uint32_t* r, uint8_t* c) {
+                 const uint32x4_t lv = vdupq_n_u32(l);
+                 auto bytes = [&](int k) { return vcntq_u8(vreinterpretq_u8_u32(veorq_u32(lv, vld1q_u32(r + k)))); };
+                 const uint8x16_t ab = vpaddq_u8(bytes(0), bytes(4)), ce = vpaddq_u8(bytes(8), bytes(12));
+                 vst1q_u8(c, vpaddq_u8(ab, ce));
+               });
 }
 #endif
 
+// The loop this build runs and its name, chosen once for both.
+namespace {
+using CostLoop = void (*)(const uint32_t*, const uint32_t*, int, int, int, int, int, uint8_t*);
+struct ChosenCostLoop {
+  CostLoop loop;
+  const char* name;
+};
+#if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)
+constexpr ChosenCostLoop kCostLoop = {censusCostRangeAvx2, "AVX2"};
+#elif defined(__SSE4_1__) && !defined(__AVX2__)
+constexpr ChosenCostLoop kCostLoop = {censusCostRangeSse41, "SSE4.1"};
+#elif defined(__ARM_NEON)
+constexpr ChosenCostLoop kCostLoop = {censusCostRangeNeon, "NEON"};
+#elif defined(__AVX512VPOPCNTDQ__)
+// With AVX-512 VPOPCNTDQ the compiler vectorises the plain loop on vpopcntd itself.
+constexpr ChosenCostLoop kCostLoop = {censusCostRangeScalar, "AVX-512 VPOPCNTDQ"};
+#else
+constexpr ChosenCostLoop kCostLoop = {censusCostRangeScalar, "portable loop"};
+#endif
+}  // namespace
+
+const char* censusCostPath() { return kCostLoop.name; }
+
 void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,
                      int min_disparity, int num_disparities, uint8_t* out) {
-#if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)
-  censusCostRangeAvx2(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out);
-#elif defined(__SSE4_1__) && !defined(__AVX2__)
-  censusCostRangeSse41(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out);
-#elif defined(__ARM_NEON)
-  censusCostRangeNeon(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out);
-#else
-  // With AVX-512 VPOPCNTDQ the compiler vectorises this loop on vpopcntd itself.
-  censusCostRangeScalar(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out);
-#endif
+  kCostLoop.loop(left, right_reversed, cols, x0, x1, min_disparity, num_disparities, out);
 }
 
 }  // namespace nerv::stereo

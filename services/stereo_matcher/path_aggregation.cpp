@@ -12,8 +12,6 @@ namespace nerv::stereo {
 
 namespace {
 
-inline uint8_t saturate(int v) { return static_cast<uint8_t>(std::min(v, 255)); }
-
 #ifdef __AVX2__
 // The AVX2 step. D costs of the previous pixel sit in D/32 registers; the
 // d-1 / d+1 neighbours are the register shifted by one byte across the
