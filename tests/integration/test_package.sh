@@ -13,6 +13,15 @@ for tool in dpkg-deb dpkg-shlibdeps; do
   command -v "$tool" >/dev/null || { echo "SKIP: $tool is missing (Debian package dpkg-dev)" >&2; exit 77; }
 done
 
+if grep -q '^CMAKE_TOOLCHAIN_FILE:' "$NERV_BUILD/CMakeCache.txt"; then
+  # a cross build's (tools/nerv cross) binaries are another architecture's: no package of them
+  if "$NERV_ROOT/tools/package/make_deb.sh" "$NERV_BUILD" "$tmp/out" 2>"$tmp/make.log"; then
+    fail "make_deb.sh packaged the cross build $NERV_BUILD"
+  fi
+  grep -q "is a cross build" "$tmp/make.log" || fail "make_deb.sh on a cross build: $(cat "$tmp/make.log")"
+  pass "a cross build is refused: $(cat "$tmp/make.log")"
+  exit 0
+fi
 deb=$("$NERV_ROOT/tools/package/make_deb.sh" "$NERV_BUILD" "$tmp/out" 2>"$tmp/make.log") || fail "make_deb.sh: $(cat "$tmp/make.log")"
 [[ -f "$deb" ]] || fail "no package: $deb"
 field() { dpkg-deb -f "$deb" "$1"; }

@@ -28,6 +28,11 @@ done
 [[ -f "$build/CMakeCache.txt" ]] || die "$build is not a configured build folder"
 [[ -x "$build/bin/nerv_up" ]] || die "$build/bin/nerv_up is missing: build first"
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
+# A cross build (tools/nerv cross) has another architecture's binaries, whose Depends
+# dpkg-shlibdeps cannot find among this computer's packages: refuse rather than label
+# aarch64 programs with this computer's architecture.
+[[ -z "$(cache CMAKE_TOOLCHAIN_FILE)" ]] ||
+  die "$build is a cross build ($(cache CMAKE_TOOLCHAIN_FILE)); packages are made on the architecture they are for (build nerv on that computer, or in an arm64 Debian container)"
 
 # Version: the project's, then the commit count (so a later commit sorts higher for apt) and
 # hash of the build's source, as `nerv_up --version` says it: nerv 0.1.0 (6bc2d5f[-dirty]).
