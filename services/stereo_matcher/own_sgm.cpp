@@ -367,9 +367,12 @@ class OwnSgm : public StereoMatcher {
 }  // namespace
 
 const char* ownSgmCodePaths() {
-  static const std::string text = std::string(pathSimdAvailable() ? "path steps and winners AVX2"
-                                                                   : "path steps and winners in portable loops (no AVX2)") +
-                                  ", census costs " + censusCostPath();
+#ifdef __AVX2__
+  static const std::string text = std::string("path steps and winners AVX2, census costs ") + censusCostPath();
+#else
+  static const std::string text = std::string("path steps ") + pathStepPath() +
+                                  ", winners in portable loops (no AVX2), census costs " + censusCostPath();
+#endif
   return text.c_str();
 }
 

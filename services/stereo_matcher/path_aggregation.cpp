@@ -6,6 +6,12 @@
 
 #ifdef __AVX2__
 #include <immintrin.h>
+#elif defined(__ARM_NEON)
+#include <arm_neon.h>
+#define NERV_PATH_STEP_128 1
+#elif defined(__SSE4_1__)
+#include <smmintrin.h>
+#define NERV_PATH_STEP_128 1
 #endif
 
 namespace nerv::stereo {
@@ -53,13 +59,77 @@ __attribute__((always_inline)) inline uint8_t stepAvx2(const uint8_t* cost, cons
 }
 #endif
 
+#ifdef NERV_PATH_STEP_128
+// The same step on 16 disparities a register, for targets without AVX2: NEON (ARM) or
+// SSE4.1 (x86-64-v2). The compiler vectorises pathStepScalar too, but only its interior,
+// with the saturation written out; this one is the AVX2 step's arithmetic, register for
+// register (stereoSgm.PathStepSimdEqualsScalar).
+#if defined(__ARM_NEON)
+using V16 = uint8x16_t;
+inline V16 load16(const uint8_t* p) { return vld1q_u8(p); }
+inline void store16(uint8_t* p, V16 v) { vst1q_u8(p, v); }
+inline V16 splat16(uint8_t x) { return vdupq_n_u8(x); }
+inline V16 adds16(V16 a, V16 b) { return vqaddq_u8(a, b); }
+inline V16 sub16(V16 a, V16 b) { return vsubq_u8(a, b); }
+inline V16 min16(V16 a, V16 b) { return vminq_u8(a, b); }
+inline V16 lower16(V16 below, V16 cur) { return vextq_u8(below, cur, 15); }  // below[15], cur[0..14]
+inline V16 upper16(V16 cur, V16 above) { return vextq_u8(cur, above, 1); }   // cur[1..15], above[0]
+inline uint8_t hmin16(V16 v) { return vminvq_u8(v); }
+#else
+using V16 = __m128i;
+inline V16 load16(const uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+inline void store16(uint8_t* p, V16 v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
+inline V16 splat16(uint8_t x) { return _mm_set1_epi8(static_cast<char>(x)); }
+inline V16 adds16(V16 a, V16 b) { return _mm_adds_epu8(a, b); }
+inline V16 sub16(V16 a, V16 b) { return _mm_sub_epi8(a, b); }
+inline V16 min16(V16 a, V16 b) { return _mm_min_epu8(a, b); }
+inline V16 lower16(V16 below, V16 cur) { return _mm_alignr_epi8(cur, below, 15); }
+inline V16 upper16(V16 cur, V16 above) { return _mm_alignr_epi8(above, cur, 1); }
+inline uint8_t hmin16(V16 v) {  // pairs of bytes into 16-bit lanes, then minpos
+  return static_cast<uint8_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(_mm_min_epu8(v, _mm_srli_epi16(v, 8)))));
+}
+#endif
+
+__attribute__((always_inline)) inline uint8_t step128(const uint8_t* cost, const uint8_t* prev,
+                                                      uint8_t prev_min, uint8_t* out, int D, V16 p1v,
+                                                      V16 p2v) {
+  const V16 minv = splat16(prev_min);
+  const V16 jump = adds16(minv, p2v);
+  const V16 full = splat16(255);
+  V16 below = full, cur = load16(prev), running = full;
+  for (int k = 0; k < D; k += 16) {
+    const V16 above = k + 16 < D ? load16(prev + k + 16) : full;
+    const V16 m = min16(min16(cur, adds16(lower16(below, cur), p1v)),
+                        min16(adds16(upper16(cur, above), p1v), jump));
+    const V16 v = adds16(sub16(m, minv), load16(cost + k));
+    store16(out + k, v);
+    running = min16(running, v);
+    below = cur;
+    cur = above;
+  }
+  return hmin16(running);
+}
+#endif
+
 }  // namespace
 
 bool pathSimdAvailable() {
-#ifdef __AVX2__
+#if defined(__AVX2__) || defined(NERV_PATH_STEP_128)
   return true;
 #else
   return false;
+#endif
+}
+
+const char* pathStepPath() {
+#if defined(__AVX2__)
+  return "AVX2";
+#elif defined(NERV_PATH_STEP_128) && defined(__ARM_NEON)
+  return "NEON";
+#elif defined(NERV_PATH_STEP_128)
+  return "SSE4.1";
+#else
+  return "portable loop";
 #endif
 }
 
@@ -103,40 +173,63 @@ uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min,
   if (D % 32 == 0)
     return stepAvx2(cost, prev, prev_min, out, D, _mm256_set1_epi8(static_cast<char>(pen.p1)),
                     _mm256_set1_epi8(static_cast<char>(pen.p2)));
+#elif defined(NERV_PATH_STEP_128)
+  if (D % 16 == 0)
+    return step128(cost, prev, prev_min, out, D, splat16(static_cast<uint8_t>(pen.p1)),
+                   splat16(static_cast<uint8_t>(pen.p2)));
 #endif
   return pathStepScalar(cost, prev, prev_min, out, D, pen);
 }
 
+namespace {
+// Both directions of a row in one loop: two independent dependency chains per iteration
+// keep the core busy while each waits on its horizontal minimum. step(cost, prev, prev_min,
+// out) is one of the steps above.
+template <class Step>
+__attribute__((always_inline)) inline void walkRowBothWays(const uint8_t* cost, int cols, int D,
+                                                           const uint8_t* zeros, uint8_t* forward,
+                                                           uint8_t* backward, Step step) {
+  uint8_t min_fwd = 0, min_bwd = 0;
+  const uint8_t* prev_fwd = zeros;
+  const uint8_t* prev_bwd = zeros;
+  for (int i = 0; i < cols; ++i) {
+    const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
+    min_fwd = step(cost + f, prev_fwd, min_fwd, forward + f);
+    min_bwd = step(cost + b, prev_bwd, min_bwd, backward + b);
+    prev_fwd = forward + f;
+    prev_bwd = backward + b;
+  }
+}
+}  // namespace
+
 void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties pen, bool simd,
                             uint8_t* forward, uint8_t* backward) {
   if (cols <= 0) return;
-  std::vector<uint8_t> zeros(D, 0);
-  uint8_t min_fwd = 0, min_bwd = 0;
-  const uint8_t* prev_fwd = zeros.data();
-  const uint8_t* prev_bwd = zeros.data();
+  const std::vector<uint8_t> zeros(D, 0);
 #ifdef __AVX2__
   if (simd && D % 32 == 0) {
     const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
     const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
-    // Both directions in one loop: two independent dependency chains per
-    // iteration keep the core busy while each waits on its horizontal minimum.
-    for (int i = 0; i < cols; ++i) {
-      const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
-      min_fwd = stepAvx2(cost + f, prev_fwd, min_fwd, forward + f, D, p1v, p2v);
-      min_bwd = stepAvx2(cost + b, prev_bwd, min_bwd, backward + b, D, p1v, p2v);
-      prev_fwd = forward + f;
-      prev_bwd = backward + b;
-    }
+    walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
+                    [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
+                      return stepAvx2(c, prev, prev_min, out, D, p1v, p2v);
+                    });
+    return;
+  }
+#elif defined(NERV_PATH_STEP_128)
+  if (simd && D % 16 == 0) {
+    const V16 p1v = splat16(static_cast<uint8_t>(pen.p1)), p2v = splat16(static_cast<uint8_t>(pen.p2));
+    walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
+                    [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
+                      return step128(c, prev, prev_min, out, D, p1v, p2v);
+                    });
     return;
   }
 #endif
-  for (int i = 0; i < cols; ++i) {
-    const size_t f = static_cast<size_t>(i) * D, b = static_cast<size_t>(cols - 1 - i) * D;
-    min_fwd = pathStepScalar(cost + f, prev_fwd, min_fwd, forward + f, D, pen);
-    min_bwd = pathStepScalar(cost + b, prev_bwd, min_bwd, backward + b, D, pen);
-    prev_fwd = forward + f;
-    prev_bwd = backward + b;
-  }
+  walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
+                  [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
+                    return pathStepScalar(c, prev, prev_min, out, D, pen);
+                  });
 }
 
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
@@ -156,6 +249,16 @@ void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const ui
     }
     return;
   }
+#endif
+#if defined(NERV_PATH_STEP_128)
+  if (simd && D % 16 == 0) {
+    const V16 p1v = splat16(static_cast<uint8_t>(pen.p1)), p2v = splat16(static_cast<uint8_t>(pen.p2));
+    for (int x = 0; x < cols; ++x) {
+      const size_t o = static_cast<size_t>(x) * D;
+      out_min[x] = prev_row ? step128(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v)
+                            : step128(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v);
+    }
+  } else
 #endif
   for (int x = 0; x < cols; ++x) {
     const size_t o = static_cast<size_t>(x) * D;

@@ -17,19 +17,23 @@ struct PathPenalties {
   int p2 = 120;
 };
 
-// True when this build has the AVX2 step (compiled with -mavx2 / -march=native).
+// True when this build has a vector step: AVX2 (32 disparities a register), or without
+// AVX2 one on 16: NEON (ARM) or SSE4.1 (x86-64-v2). pathStepPath() names it.
 bool pathSimdAvailable();
+const char* pathStepPath();
 
 // One step for one pixel: prev = L(p - r, .) (all zeros and prev_min 0 at the
 // start of a path, which gives L = C), out = L(p, .). Returns min_d out[d].
 uint8_t pathStepScalar(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                        int num_disparities, PathPenalties pen);
-// Same with AVX2; num_disparities % 32 == 0. Falls back to scalar without AVX2.
+// Same with the build's vector step (num_disparities % 32 == 0 for AVX2, % 16 for NEON or
+// SSE4.1); the scalar step otherwise.
 uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                      int num_disparities, PathPenalties pen);
 
 // Left-to-right and right-to-left paths of one image row. cost, forward and
-// backward hold cols * D bytes ([x][d]). simd: use the AVX2 step (needs D % 32 == 0).
+// backward hold cols * D bytes ([x][d]). simd: use the vector step (D % 32 == 0 for AVX2,
+// D % 16 == 0 for NEON or SSE4.1).
 void aggregateRowHorizontal(const uint8_t* cost, int cols, int num_disparities, PathPenalties pen,
                             bool simd, uint8_t* forward, uint8_t* backward);
 
