@@ -14,6 +14,10 @@ LOGGER_PATTERN="lcm-logger --lcm-url=$(printf '%s' "$URL" | sed 's/[][\.*^$?+(){
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 pass() { echo "ok: $*"; }
+# PIDs of the build's programs whose command line starts with $BIN/$1 ("stixel " for the
+# stixel stage, "" for any). A cross build's tests (tools/nerv cross --test) run them through
+# binfmt_misc, which puts the emulator in front: /usr/bin/qemu-aarch64-static $BIN/stixel ...
+nerv_pgrep() { pgrep -f "^(/usr/bin/qemu-aarch64-static )?$BIN/$1"; }
 
 enter_private_bus() {
   if [[ "${NERV_IN_NETNS:-}" == 1 ]]; then return; fi
@@ -95,7 +99,7 @@ run_installed_pipeline() {  # run_installed_pipeline BINDIR CONFIG WORKDIR
 }
 
 no_survivors() {  # no process of this build left running
-  ! pgrep -f "^$BIN/" >/dev/null && ! pgrep -f "$LOGGER_PATTERN" >/dev/null
+  ! nerv_pgrep "" >/dev/null && ! pgrep -f "$LOGGER_PATTERN" >/dev/null
 }
 
 # best_kept_iou FILE X1 Y1 X2 Y2: the best IoU of a kept detection in FILE (DETECTIONS as

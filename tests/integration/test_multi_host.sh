@@ -67,7 +67,7 @@ on 1 "$BIN/nerv_source" --data "$data" --rate 5 --lcm-url "$URL2" --drain-timeou
   --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" \
   || { cat "$tmp"/*.log; fail "after host2's link came back, not every frame came out as DETECTIONS"; }
 for svc in stixel snv_extrinsic; do
-  pgrep -f "^$BIN/$svc " >/dev/null || fail "$svc on host2 did not survive its link going down"
+  nerv_pgrep "$svc " >/dev/null || fail "$svc on host2 did not survive its link going down"
 done
 pass "host2's link down for 1 s and up again: the same services detect the next 6 frames too"
 sleep 0.3

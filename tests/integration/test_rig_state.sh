@@ -100,7 +100,7 @@ start_child "$tmp/up.log" "$BIN/nerv_up" --config "$tmp/kept.yaml" --lcm-url "$U
 "$BIN/nerv_source" --data "$tmp/moved" --repeat 2 --rate 10 --lcm-url "$URL" --drain-timeout 20 \
   --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source1.log" || fail "before the kill: $(tail -c 300 "$tmp/source1.log")"
 [[ -f "$state" ]] || fail "under nerv_up: nothing saved: $(grep -i 'rig state\|row_misaligned' "$tmp/up.log" | head -n 3)"
-victim=$(pgrep -f "^$BIN/stereo_matcher ") || fail "no stereo_matcher under nerv_up"
+victim=$(nerv_pgrep "stereo_matcher ") || fail "no stereo_matcher under nerv_up"
 kill -KILL "$victim"
 wait_until 20 bash -c "pgrep -f '^$BIN/stereo_matcher ' | grep -vx $victim" >/dev/null || fail "the stereo_matcher was not restarted: $(tail -n 5 "$tmp/up.log")"
 "$BIN/nerv_source" --data "$tmp/moved" --rate 10 --lcm-url "$URL" --drain-timeout 20 \

@@ -60,10 +60,10 @@ pass "FRONT_ and REAR_ pipelines ran side by side, each saw only its own 6 frame
 # 3. supervisor: kill -9 a service mid-run
 "$NERV_ROOT/tools/nerv" run --data "$data" --repeat 10 --out "$tmp/kill" --rate 10 --timeout 5 >"$tmp/kill.txt" 2>&1 &
 run=$!
-wait_until 20 pgrep -f "^$BIN/stixel " >/dev/null || fail "stixel never started: $(cat "$tmp/kill.txt")"
+wait_until 20 nerv_pgrep "stixel " >/dev/null || fail "stixel never started: $(cat "$tmp/kill.txt")"
 wait_until 20 test -s "$tmp/kill/nerv.lcmlog" || fail "no log"
 sleep 2   # let the pipeline run for a while before the crash
-victim=$(pgrep -f "^$BIN/stixel " | head -n1)
+victim=$(nerv_pgrep "stixel " | head -n1)
 killed_us=$(( $(date +%s%N) / 1000 ))
 kill -9 "$victim"
 wait $run || true   # frames lost during the restart make the run report them

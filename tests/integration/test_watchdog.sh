@@ -32,10 +32,10 @@ reports() {  # reports SERVICE PID: that process is on the health board and not 
 }
 start_child "$tmp/up.log" "$BIN/nerv_up" --config "$tmp/watchdog.yaml" --services stixel,validator --quiet
 for svc in validator stixel; do
-  wait_until 30 pgrep -f "^$BIN/$svc " >/dev/null || fail "$svc never started: $(cat "$tmp/up.log")"
+  wait_until 30 nerv_pgrep "$svc " >/dev/null || fail "$svc never started: $(cat "$tmp/up.log")"
 done
-victim=$(pgrep -f "^$BIN/validator ")
-bystander=$(pgrep -f "^$BIN/stixel ")
+victim=$(nerv_pgrep "validator ")
+bystander=$(nerv_pgrep "stixel ")
 wait_until 30 reports validator "$victim" || fail "validator $victim never reported health"
 kill -STOP "$victim"
 wait_until 20 grep -q "validator/0 (pid $victim) sent no health" "$tmp/up.log" \
@@ -45,10 +45,10 @@ wait_until 20 grep -q "restarted validator/0" "$tmp/up.log" || fail "validator n
 # Restarted like a crashed service, after the first back-off (restart_backoff_s 0.5).
 grep -q "validator/0 (pid $victim) killed by signal 9 (hung); restart in 0.5 s" "$tmp/up.log" \
   || fail "not restarted after the first back-off: $(grep "pid $victim" "$tmp/up.log")"
-fresh=$(pgrep -f "^$BIN/validator ")
+fresh=$(nerv_pgrep "validator ")
 [[ -n "$fresh" && "$fresh" != "$victim" ]] || fail "no new validator process ($fresh)"
 wait_until 30 reports validator "$fresh" || fail "the restarted validator $fresh does not report"
-[[ "$(pgrep -f "^$BIN/stixel ")" == "$bystander" ]] || fail "the stixel stage beside it was restarted too"
+[[ "$(nerv_pgrep "stixel ")" == "$bystander" ]] || fail "the stixel stage beside it was restarted too"
 if grep -q "restarted stixel" "$tmp/up.log"; then fail "stixel restarted: $(cat "$tmp/up.log")"; fi
 pass "$(grep -o "validator/0 (pid $victim) sent no health for [0-9.]* s" "$tmp/up.log"): killed, restarted as pid $fresh, reporting again; stixel untouched"
 # Anyone on the bus sees it: the supervisor's report counts the restart and says why.
@@ -57,7 +57,7 @@ wait_until 10 bash -c "$(declare -f supervisor); BIN='$BIN' host='$host' supervi
   || fail "nerv_up's report does not show the restart: $(supervisor)"
 pass "nerv_up's own report: $(supervisor | sed 's/  */ /g')"
 # A service that dies of SIGILL (a build for another CPU) is said to, with the build's -march.
-ill=$(pgrep -f "^$BIN/stixel ")
+ill=$(nerv_pgrep "stixel ")
 kill -ILL "$ill"
 wait_until 10 grep -q "stixel/0 (pid $ill) killed by signal 4 (illegal instruction: built with -march=" "$tmp/up.log" \
   || fail "SIGILL not named: $(grep "pid $ill" "$tmp/up.log")"
