@@ -21,7 +21,8 @@ if ! dpkg --print-foreign-architectures | grep -qx arm64; then
   dpkg --add-architecture arm64
   apt-get update -qq
 fi
-apt-cache show libc6:arm64 >/dev/null 2>&1 || { [[ $(id -u) == 0 ]] && apt-get update -qq; }
+# (an if, not `|| { [[ root ]] && ...; }`, which under set -e would end the script silently)
+if ! apt-cache show libc6:arm64 >/dev/null 2>&1 && [[ $(id -u) == 0 ]]; then apt-get update -qq; fi
 apt-cache show libc6:arm64 >/dev/null 2>&1 || die "apt has no arm64 index (apt-get update failed?)"
 
 runtime=(libc6 libstdc++6 libgcc-s1 liblcm1 libglib2.0-0 libyaml-cpp0.7
