@@ -367,12 +367,12 @@ class OwnSgm : public StereoMatcher {
 }  // namespace
 
 const char* ownSgmCodePaths() {
-#ifdef __AVX2__
-  static const std::string text = std::string("path steps and winners AVX2, census costs ") + censusCostPath();
-#else
-  static const std::string text = std::string("path steps ") + pathStepPath() +
-                                  ", winners in portable loops (no AVX2), census costs " + censusCostPath();
-#endif
+  static const std::string text = [] {
+    const std::string step = pathStepPath(), winners = winnerPath();
+    const std::string loops = step == winners ? "path steps and winners " + step
+                                              : "path steps " + step + ", winners " + winners;
+    return loops + (step == "AVX2" ? "" : " (no AVX2)") + ", census costs " + censusCostPath();
+  }();
   return text.c_str();
 }
 

@@ -34,9 +34,10 @@ namespace nerv::stereo {
 constexpr int kSgmSegmentRows = 8;
 
 // Which code this build runs, for the service's start line and bench_stereo: e.g.
-// "path steps and winners AVX2, census costs AVX-512 VPOPCNTDQ". Without AVX2 the path
-// steps and winners run the portable loops, 3-4 times slower (docs/stereo.md "CPUs
-// without AVX-512 VPOPCNTDQ"), which is worth knowing when a matcher is slow.
+// "path steps and winners AVX2, census costs AVX-512 VPOPCNTDQ". Without AVX2 they run on
+// 16-byte registers ("SSE4.1 (no AVX2)", "NEON (no AVX2)"), about twice the AVX2 build's time,
+// or, without those too, in portable loops (docs/stereo.md "CPUs without AVX-512
+// VPOPCNTDQ"), which is worth knowing when a matcher is slow.
 const char* ownSgmCodePaths();
 
 // use_simd = false runs the scalar aggregation (the SIMD-vs-scalar test);

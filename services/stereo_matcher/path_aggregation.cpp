@@ -4,134 +4,78 @@
 #include <cstring>
 #include <vector>
 
-#ifdef __AVX2__
-#include <immintrin.h>
-#elif defined(__ARM_NEON)
-#include <arm_neon.h>
-#define NERV_PATH_STEP_128 1
-#elif defined(__SSE4_1__)
-#include <smmintrin.h>
-#define NERV_PATH_STEP_128 1
-#endif
+#include "simd_bytes.hpp"
 
 namespace nerv::stereo {
 
 namespace {
 
-#ifdef __AVX2__
-// The AVX2 step. D costs of the previous pixel sit in D/32 registers; the
-// d-1 / d+1 neighbours are the register shifted by one byte across the
-// 128-bit lanes (permute2x128 + alignr), with 255 shifted in at both ends.
-// stream (32-byte aligned, or nullptr): a second copy of out written with
-// non-temporal stores (the vertical paths' volume).
-__attribute__((always_inline)) inline uint8_t stepAvx2(const uint8_t* cost, const uint8_t* prev,
-                                                       uint8_t prev_min, uint8_t* out, int D,
-                                                       __m256i p1v, __m256i p2v,
-                                                       uint8_t* stream = nullptr) {
-  const __m256i minv = _mm256_set1_epi8(static_cast<char>(prev_min));
-  const __m256i jump = _mm256_adds_epu8(minv, p2v);
-  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
-  __m256i below = full;
-  __m256i cur = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev));
-  __m256i running = full;
-  for (int k = 0; k < D; k += 32) {
-    const __m256i above =
-        k + 32 < D ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + k + 32)) : full;
-    const __m256i minus1 =
-        _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 15);  // L(d-1)
-    const __m256i plus1 =
-        _mm256_alignr_epi8(_mm256_permute2x128_si256(cur, above, 0x21), cur, 1);   // L(d+1)
-    const __m256i m = _mm256_min_epu8(
-        _mm256_min_epu8(cur, _mm256_adds_epu8(minus1, p1v)),
-        _mm256_min_epu8(_mm256_adds_epu8(plus1, p1v), jump));
-    const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(cost + k));
-    const __m256i v = _mm256_adds_epu8(_mm256_sub_epi8(m, minv), c);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + k), v);
-    if (stream) _mm256_stream_si256(reinterpret_cast<__m256i*>(stream + k), v);
-    running = _mm256_min_epu8(running, v);
+// The vector step on B::kLanes disparities a register (B: simd_bytes.hpp; 32 with AVX2, 16
+// with SSE4.1 or NEON). D % B::kLanes == 0. The D costs of the previous pixel sit in
+// D / kLanes registers; the d - 1 / d + 1 neighbours are the register shifted by one byte
+// (across the 128-bit lanes for AVX2), with 255 shifted in at both ends.
+// stream (aligned to the register, or nullptr): a second copy of out written with
+// non-temporal stores (the vertical paths' checkpoints).
+template <class B>
+NERV_SIMD_INLINE uint8_t stepBytes(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min,
+                                   uint8_t* out, int D, typename B::V p1v, typename B::V p2v,
+                                   uint8_t* stream = nullptr) {
+  using V = typename B::V;
+  constexpr int N = B::kLanes;
+  const V minv = B::splat(prev_min);
+  const V jump = B::adds(minv, p2v);
+  const V full = B::splat(255);
+  V below = full, cur = B::load(prev), running = full;
+  for (int k = 0; k < D; k += N) {
+    const V above = k + N < D ? B::load(prev + k + N) : full;
+    const V m = B::min(B::min(cur, B::adds(B::shiftUp(below, cur), p1v)),     // L(d - 1) + P1
+                       B::min(B::adds(B::shiftDown(cur, above), p1v), jump)); // L(d + 1) + P1
+    const V v = B::adds(B::sub(m, minv), B::load(cost + k));
+    B::store(out + k, v);
+    if (stream) B::stream(stream + k, v);
+    running = B::min(running, v);
     below = cur;
     cur = above;
   }
-  // Horizontal minimum of 32 bytes: fold to 16, pair bytes into 16-bit lanes, minpos.
-  __m128i x = _mm_min_epu8(_mm256_castsi256_si128(running), _mm256_extracti128_si256(running, 1));
-  x = _mm_min_epu8(x, _mm_srli_epi16(x, 8));
-  return static_cast<uint8_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(x)));
+  return B::minLane(running);
 }
-#endif
 
-#ifdef NERV_PATH_STEP_128
-// The same step on 16 disparities a register, for targets without AVX2: NEON (ARM) or
-// SSE4.1 (x86-64-v2). The compiler vectorises pathStepScalar too, but only its interior,
-// with the saturation written out; this one is the AVX2 step's arithmetic, register for
-// register (stereoSgm.PathStepSimdEqualsScalar).
-#if defined(__ARM_NEON)
-using V16 = uint8x16_t;
-inline V16 load16(const uint8_t* p) { return vld1q_u8(p); }
-inline void store16(uint8_t* p, V16 v) { vst1q_u8(p, v); }
-inline V16 splat16(uint8_t x) { return vdupq_n_u8(x); }
-inline V16 adds16(V16 a, V16 b) { return vqaddq_u8(a, b); }
-inline V16 sub16(V16 a, V16 b) { return vsubq_u8(a, b); }
-inline V16 min16(V16 a, V16 b) { return vminq_u8(a, b); }
-inline V16 lower16(V16 below, V16 cur) { return vextq_u8(below, cur, 15); }  // below[15], cur[0..14]
-inline V16 upper16(V16 cur, V16 above) { return vextq_u8(cur, above, 1); }   // cur[1..15], above[0]
-inline uint8_t hmin16(V16 v) { return vminvq_u8(v); }
-#else
-using V16 = __m128i;
-inline V16 load16(const uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
-inline void store16(uint8_t* p, V16 v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
-inline V16 splat16(uint8_t x) { return _mm_set1_epi8(static_cast<char>(x)); }
-inline V16 adds16(V16 a, V16 b) { return _mm_adds_epu8(a, b); }
-inline V16 sub16(V16 a, V16 b) { return _mm_sub_epi8(a, b); }
-inline V16 min16(V16 a, V16 b) { return _mm_min_epu8(a, b); }
-inline V16 lower16(V16 below, V16 cur) { return _mm_alignr_epi8(cur, below, 15); }
-inline V16 upper16(V16 cur, V16 above) { return _mm_alignr_epi8(above, cur, 1); }
-inline uint8_t hmin16(V16 v) {  // pairs of bytes into 16-bit lanes, then minpos
-  return static_cast<uint8_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(_mm_min_epu8(v, _mm_srli_epi16(v, 8)))));
-}
-#endif
-
-__attribute__((always_inline)) inline uint8_t step128(const uint8_t* cost, const uint8_t* prev,
-                                                      uint8_t prev_min, uint8_t* out, int D, V16 p1v,
-                                                      V16 p2v) {
-  const V16 minv = splat16(prev_min);
-  const V16 jump = adds16(minv, p2v);
-  const V16 full = splat16(255);
-  V16 below = full, cur = load16(prev), running = full;
-  for (int k = 0; k < D; k += 16) {
-    const V16 above = k + 16 < D ? load16(prev + k + 16) : full;
-    const V16 m = min16(min16(cur, adds16(lower16(below, cur), p1v)),
-                        min16(adds16(upper16(cur, above), p1v), jump));
-    const V16 v = adds16(sub16(m, minv), load16(cost + k));
-    store16(out + k, v);
-    running = min16(running, v);
-    below = cur;
-    cur = above;
+// The build's widest step: AVX2, else SSE4.1 or NEON (the 16-byte one is the AVX2 step's
+// arithmetic, register for register: stereoSgm.PathStepSimdEqualsScalar).
+// Calls body(B{}) with the widest byte vector of this build whose register D fills (32 lanes
+// with AVX2, else 16 with SSE4.1 or NEON; an AVX2 build also takes the 16-byte step for D = 16,
+// 48, ...). False, without calling it, when there is none or simd is off.
+template <class Body>
+NERV_SIMD_INLINE bool withStepBytes(int D, bool simd, Body&& body) {
+  if (!simd) return false;
+#ifdef NERV_BYTES32
+  if (D % Bytes32::kLanes == 0) {
+    body(Bytes32{});
+    return true;
   }
-  return hmin16(running);
-}
 #endif
+#ifdef NERV_BYTES16
+  if (D % Bytes16::kLanes == 0) {
+    body(Bytes16{});
+    return true;
+  }
+#endif
+  (void)D;
+  (void)body;
+  return false;
+}
 
 }  // namespace
 
 bool pathSimdAvailable() {
-#if defined(__AVX2__) || defined(NERV_PATH_STEP_128)
+#if defined(NERV_BYTES32) || defined(NERV_BYTES16)
   return true;
 #else
   return false;
 #endif
 }
 
-const char* pathStepPath() {
-#if defined(__AVX2__)
-  return "AVX2";
-#elif defined(NERV_PATH_STEP_128) && defined(__ARM_NEON)
-  return "NEON";
-#elif defined(NERV_PATH_STEP_128)
-  return "SSE4.1";
-#else
-  return "portable loop";
-#endif
-}
+const char* pathStepPath() { return widestBytesName(); }
 
 // Written so that GCC vectorises it on any target (SSE2, NEON): no branch in the loop.
 // Nothing is lost by leaving out the neighbours beyond the ends (255 + P1 never beats
@@ -169,16 +113,13 @@ uint8_t pathStepScalar(const uint8_t* cost, const uint8_t* prev, uint8_t prev_mi
 
 uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                      int D, PathPenalties pen) {
-#ifdef __AVX2__
-  if (D % 32 == 0)
-    return stepAvx2(cost, prev, prev_min, out, D, _mm256_set1_epi8(static_cast<char>(pen.p1)),
-                    _mm256_set1_epi8(static_cast<char>(pen.p2)));
-#elif defined(NERV_PATH_STEP_128)
-  if (D % 16 == 0)
-    return step128(cost, prev, prev_min, out, D, splat16(static_cast<uint8_t>(pen.p1)),
-                   splat16(static_cast<uint8_t>(pen.p2)));
-#endif
-  return pathStepScalar(cost, prev, prev_min, out, D, pen);
+  uint8_t least = 0;
+  const bool vector = withStepBytes(D, true, [&](auto bytes) {
+    using B = decltype(bytes);
+    least = stepBytes<B>(cost, prev, prev_min, out, D, B::splat(static_cast<uint8_t>(pen.p1)),
+                         B::splat(static_cast<uint8_t>(pen.p2)));
+  });
+  return vector ? least : pathStepScalar(cost, prev, prev_min, out, D, pen);
 }
 
 namespace {
@@ -186,9 +127,8 @@ namespace {
 // keep the core busy while each waits on its horizontal minimum. step(cost, prev, prev_min,
 // out) is one of the steps above.
 template <class Step>
-__attribute__((always_inline)) inline void walkRowBothWays(const uint8_t* cost, int cols, int D,
-                                                           const uint8_t* zeros, uint8_t* forward,
-                                                           uint8_t* backward, Step step) {
+NERV_SIMD_INLINE void walkRowBothWays(const uint8_t* cost, int cols, int D, const uint8_t* zeros,
+                                      uint8_t* forward, uint8_t* backward, Step step) {
   uint8_t min_fwd = 0, min_bwd = 0;
   const uint8_t* prev_fwd = zeros;
   const uint8_t* prev_bwd = zeros;
@@ -200,32 +140,34 @@ __attribute__((always_inline)) inline void walkRowBothWays(const uint8_t* cost, 
     prev_bwd = backward + b;
   }
 }
+
+// One row of a vertical path, pixel by pixel: step(offset, prev, prev_min) for each pixel,
+// from the previous row or, at a path's start, from zeros.
+template <class Step>
+NERV_SIMD_INLINE void walkRowDown(const uint8_t* prev_row, const uint8_t* prev_min, int cols, int D,
+                                  uint8_t* out_min, Step step) {
+  std::vector<uint8_t> zeros;
+  if (!prev_row) zeros.assign(D, 0);
+  for (int x = 0; x < cols; ++x) {
+    const size_t o = static_cast<size_t>(x) * D;
+    out_min[x] = prev_row ? step(o, prev_row + o, prev_min[x]) : step(o, zeros.data(), uint8_t{0});
+  }
+}
 }  // namespace
 
 void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties pen, bool simd,
                             uint8_t* forward, uint8_t* backward) {
   if (cols <= 0) return;
   const std::vector<uint8_t> zeros(D, 0);
-#ifdef __AVX2__
-  if (simd && D % 32 == 0) {
-    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
-    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
+  const bool vector = withStepBytes(D, simd, [&](auto bytes) {
+    using B = decltype(bytes);
+    const typename B::V p1v = B::splat(static_cast<uint8_t>(pen.p1)), p2v = B::splat(static_cast<uint8_t>(pen.p2));
     walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
                     [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
-                      return stepAvx2(c, prev, prev_min, out, D, p1v, p2v);
+                      return stepBytes<B>(c, prev, prev_min, out, D, p1v, p2v);
                     });
-    return;
-  }
-#elif defined(NERV_PATH_STEP_128)
-  if (simd && D % 16 == 0) {
-    const V16 p1v = splat16(static_cast<uint8_t>(pen.p1)), p2v = splat16(static_cast<uint8_t>(pen.p2));
-    walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
-                    [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
-                      return step128(c, prev, prev_min, out, D, p1v, p2v);
-                    });
-    return;
-  }
-#endif
+  });
+  if (vector) return;
   walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
                   [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
                     return pathStepScalar(c, prev, prev_min, out, D, pen);
@@ -235,36 +177,17 @@ void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties 
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
                           int cols, int D, PathPenalties pen, bool simd, uint8_t* out_row,
                           uint8_t* out_min, uint8_t* stream_row) {
-  std::vector<uint8_t> zeros;
-  if (!prev_row) zeros.assign(D, 0);
-#ifdef __AVX2__
-  if (simd && D % 32 == 0) {
-    const __m256i p1v = _mm256_set1_epi8(static_cast<char>(pen.p1));
-    const __m256i p2v = _mm256_set1_epi8(static_cast<char>(pen.p2));
-    for (int x = 0; x < cols; ++x) {
-      const size_t o = static_cast<size_t>(x) * D;
-      uint8_t* stream = stream_row ? stream_row + o : nullptr;
-      out_min[x] = prev_row ? stepAvx2(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v, stream)
-                            : stepAvx2(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v, stream);
-    }
-    return;
-  }
-#endif
-#if defined(NERV_PATH_STEP_128)
-  if (simd && D % 16 == 0) {
-    const V16 p1v = splat16(static_cast<uint8_t>(pen.p1)), p2v = splat16(static_cast<uint8_t>(pen.p2));
-    for (int x = 0; x < cols; ++x) {
-      const size_t o = static_cast<size_t>(x) * D;
-      out_min[x] = prev_row ? step128(cost + o, prev_row + o, prev_min[x], out_row + o, D, p1v, p2v)
-                            : step128(cost + o, zeros.data(), 0, out_row + o, D, p1v, p2v);
-    }
-  } else
-#endif
-  for (int x = 0; x < cols; ++x) {
-    const size_t o = static_cast<size_t>(x) * D;
-    out_min[x] = prev_row ? pathStepScalar(cost + o, prev_row + o, prev_min[x], out_row + o, D, pen)
-                          : pathStepScalar(cost + o, zeros.data(), 0, out_row + o, D, pen);
-  }
+  const bool vector = withStepBytes(D, simd, [&](auto bytes) {
+    using B = decltype(bytes);
+    const typename B::V p1v = B::splat(static_cast<uint8_t>(pen.p1)), p2v = B::splat(static_cast<uint8_t>(pen.p2));
+    walkRowDown(prev_row, prev_min, cols, D, out_min, [&](size_t o, const uint8_t* prev, uint8_t least) {
+      return stepBytes<B>(cost + o, prev, least, out_row + o, D, p1v, p2v, stream_row ? stream_row + o : nullptr);
+    });
+  });
+  if (vector) return;
+  walkRowDown(prev_row, prev_min, cols, D, out_min, [&](size_t o, const uint8_t* prev, uint8_t least) {
+    return pathStepScalar(cost + o, prev, least, out_row + o, D, pen);
+  });
   if (stream_row) std::memcpy(stream_row, out_row, static_cast<size_t>(cols) * D);
 }
 

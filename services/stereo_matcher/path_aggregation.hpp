@@ -17,8 +17,9 @@ struct PathPenalties {
   int p2 = 120;
 };
 
-// True when this build has a vector step: AVX2 (32 disparities a register), or without
-// AVX2 one on 16: NEON (ARM) or SSE4.1 (x86-64-v2). pathStepPath() names it.
+// True when this build has a vector step: AVX2 (32 disparities a register), or one on 16:
+// NEON (ARM) or SSE4.1 (x86-64-v2; an AVX2 build takes it where D is an odd multiple of 16).
+// pathStepPath() names the widest: "AVX2", "SSE4.1", "NEON" or "portable loops".
 bool pathSimdAvailable();
 const char* pathStepPath();
 
@@ -26,14 +27,14 @@ const char* pathStepPath();
 // start of a path, which gives L = C), out = L(p, .). Returns min_d out[d].
 uint8_t pathStepScalar(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                        int num_disparities, PathPenalties pen);
-// Same with the build's vector step (num_disparities % 32 == 0 for AVX2, % 16 for NEON or
-// SSE4.1); the scalar step otherwise.
+// Same with the build's widest vector step that num_disparities fills (% 32 == 0 for AVX2,
+// % 16 for NEON or SSE4.1); the scalar step otherwise.
 uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                      int num_disparities, PathPenalties pen);
 
 // Left-to-right and right-to-left paths of one image row. cost, forward and
-// backward hold cols * D bytes ([x][d]). simd: use the vector step (D % 32 == 0 for AVX2,
-// D % 16 == 0 for NEON or SSE4.1).
+// backward hold cols * D bytes ([x][d]). simd: use the vector step where D fills its
+// registers (as pathStepSimd).
 void aggregateRowHorizontal(const uint8_t* cost, int cols, int num_disparities, PathPenalties pen,
                             bool simd, uint8_t* forward, uint8_t* backward);
 

@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#ifdef __AVX2__
-#include <immintrin.h>
-#endif
+#include "simd_bytes.hpp"
 
 namespace nerv::stereo {
 
@@ -64,92 +62,80 @@ inline void refinePixel(const uint8_t* const p[4], size_t o, int d1, float& disp
   if (b <= a && b <= c) disparity = static_cast<float>(d1) + equiangularOffset(a, b, c);
 }
 
-#ifdef __AVX2__
-inline __m256i load(const void* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
-
-// Minimum of 32 bytes, broadcast-free: fold to 16, pair bytes into 16-bit lanes, minpos.
-inline int horizontalMin(__m256i v) {
-  __m128i x = _mm_min_epu8(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
-  x = _mm_min_epu8(x, _mm_srli_epi16(x, 8));
-  return _mm_cvtsi128_si32(_mm_minpos_epu16(x)) & 0xffff;
-}
-
-// Fused per-pixel loop; D % 32 == 0, D < 256 (byte indices, 255 = no candidate).
-// NB = D / 32 registers per pixel: the right view's running minimum and the
-// averaged costs stay in registers (the compiler unrolls the NB loops).
-template <int NB>
+// Fused per-pixel loop on the byte vectors B (simd_bytes.hpp): D = B::kLanes * NB, D < 256
+// (byte indices, 255 = no candidate). NB registers per pixel: the right view's running
+// minimum and the averaged costs stay in registers (the compiler unrolls the NB loops).
+template <class B, int NB>
 void fusedWinnersN(const uint8_t* const paths[4], int cols, int min_disparity, WinnerOptions opt,
                    int16_t* best, float* disparity, float* confidence, int16_t* best_right) {
-  constexpr int D = 32 * NB;
+  using V = typename B::V;
+  constexpr int N = B::kLanes;
+  constexpr int D = N * NB;
+  static_assert(D < 256, "byte indices");
   // Right view without a scattered running minimum: the candidates (x, d) and
   // (x - 1, d - 1) see the same right pixel, so the best candidate so far per
   // right pixel is a D-vector shifted by one lane per left pixel:
   // run_x[d] = min(S(x, d), run_{x-1}[d - 1]); lane D - 1 is final then.
-  const __m256i full = _mm256_set1_epi8(static_cast<char>(0xff));
-  __m256i run_cost[NB], run_index[NB], v[NB];
+  const V full = B::splat(255);
+  const V lanes = B::lanes();
+  // lane i of register j: d = N j + i
+  auto index = [&](int j) { return B::add(lanes, B::splat(static_cast<uint8_t>(N * j))); };
+  V run_cost[NB], run_index[NB], v[NB];
   for (int j = 0; j < NB; ++j) run_cost[j] = run_index[j] = full;
   if (best_right) std::fill(best_right, best_right + cols, int16_t{-1});
-  const __m256i lanes = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
-                                         17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
-  // lane i of the result = lane i - 1 of cur (lane 0 = last lane of below)
-  auto shift_in = [](__m256i cur, __m256i below) {
-    return _mm256_alignr_epi8(cur, _mm256_permute2x128_si256(below, cur, 0x21), 15);
-  };
   for (int x = 0; x < cols; ++x) {
     const size_t o = static_cast<size_t>(x) * D;
-    __m256i vmin = full;
+    V vmin = full;
     for (int j = 0; j < NB; ++j) {
-      const int k = 32 * j;
-      v[j] = _mm256_avg_epu8(_mm256_avg_epu8(load(paths[0] + o + k), load(paths[1] + o + k)),
-                             _mm256_avg_epu8(load(paths[2] + o + k), load(paths[3] + o + k)));
-      vmin = _mm256_min_epu8(vmin, v[j]);
+      const int k = N * j;
+      v[j] = B::avg(B::avg(B::load(paths[0] + o + k), B::load(paths[1] + o + k)),
+                    B::avg(B::load(paths[2] + o + k), B::load(paths[3] + o + k)));
+      vmin = B::min(vmin, v[j]);
     }
     if (best_right) {
       // from the top register down, so each shift reads the register below before it changes
       for (int j = NB - 1; j >= 0; --j) {
-        const __m256i below_cost = j > 0 ? run_cost[j - 1] : full;  // run_{x-1}[-1]: no candidate
-        const __m256i below_index = j > 0 ? run_index[j - 1] : full;
-        const __m256i shifted_cost = shift_in(run_cost[j], below_cost);
-        const __m256i shifted_index = shift_in(run_index[j], below_index);
+        const V below_cost = j > 0 ? run_cost[j - 1] : full;  // run_{x-1}[-1]: no candidate
+        const V below_index = j > 0 ? run_index[j - 1] : full;
+        const V shifted_cost = B::shiftUp(below_cost, run_cost[j]);
+        const V shifted_index = B::shiftUp(below_index, run_index[j]);
         // keep the earlier (smaller d) candidate unless v is strictly smaller;
         // an empty lane (index 255) always takes v
-        const __m256i keep = _mm256_andnot_si256(_mm256_cmpeq_epi8(shifted_index, full),
-                                                 _mm256_cmpeq_epi8(_mm256_max_epu8(v[j], shifted_cost), v[j]));
-        const __m256i d = _mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(32 * j)));
-        run_cost[j] = _mm256_blendv_epi8(v[j], shifted_cost, keep);
-        run_index[j] = _mm256_blendv_epi8(d, shifted_index, keep);
+        const V keep = B::andNot(B::eq(shifted_index, full), B::eq(B::max(v[j], shifted_cost), v[j]));
+        run_cost[j] = B::select(keep, v[j], shifted_cost);
+        run_index[j] = B::select(keep, index(j), shifted_index);
       }
       const int xr = x - min_disparity - (D - 1);  // its last candidate was (x, D - 1)
-      if (xr >= 0) best_right[xr] = static_cast<int16_t>(static_cast<uint8_t>(_mm256_extract_epi8(run_index[NB - 1], 31)));
+      if (xr >= 0) best_right[xr] = B::lastLane(run_index[NB - 1]);
     }
-    const int s1 = horizontalMin(vmin);
-    const __m256i target = _mm256_set1_epi8(static_cast<char>(s1));
+    const int s1 = B::minLane(vmin);
+    const V target = B::splat(static_cast<uint8_t>(s1));
     int d1 = 0;
     for (int j = 0; j < NB; ++j) {
-      const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(v[j], target)));
-      if (mask) {
-        d1 = 32 * j + __builtin_ctz(mask);
+      const int lane = B::firstEqual(v[j], target);
+      if (lane < N) {
+        d1 = N * j + lane;
         break;
       }
     }
     // second best: lanes d1 - 1 .. d1 + 1 masked to 255 by an index compare
-    const __m256i lo = _mm256_set1_epi8(static_cast<char>(d1 - 1));
-    const __m256i two = _mm256_set1_epi8(2);
-    __m256i m2 = full;
+    const V lo = B::splat(static_cast<uint8_t>(d1 - 1));
+    const V two = B::splat(2);
+    V m2 = full;
     for (int j = 0; j < NB; ++j) {
-      const __m256i t = _mm256_sub_epi8(_mm256_add_epi8(lanes, _mm256_set1_epi8(static_cast<char>(32 * j))), lo);
-      const __m256i near = _mm256_cmpeq_epi8(_mm256_min_epu8(t, two), t);  // 0 <= d' - (d1 - 1) <= 2
-      m2 = _mm256_min_epu8(m2, _mm256_or_si256(v[j], near));
+      const V t = B::sub(index(j), lo);
+      const V near = B::eq(B::min(t, two), t);  // 0 <= d' - (d1 - 1) <= 2
+      m2 = B::min(m2, B::bitOr(v[j], near));
     }
     // all-255 except the masked lanes would read 255 here; the scalar
     // secondBest then also sees 255 (a real cost), so both agree
-    const int s2 = D <= 3 ? s1 : horizontalMin(m2);
+    const int s2 = D <= 3 ? s1 : B::minLane(m2);
     decide(d1, s1, s2, opt, best[x], disparity[x], confidence[x]);
     if (opt.subpixel && best[x] > 0 && best[x] + 1 < D) refinePixel(paths, o, d1, disparity[x]);
   }
   if (best_right) {  // right pixels whose candidates ended at the row's last pixel
-    alignas(32) uint8_t last[D];
-    for (int j = 0; j < NB; ++j) _mm256_store_si256(reinterpret_cast<__m256i*>(last + 32 * j), run_index[j]);
+    uint8_t last[D];
+    for (int j = 0; j < NB; ++j) B::store(last + N * j, run_index[j]);
     for (int d = 0; d + 1 < D; ++d) {
       const int xr = cols - 1 - min_disparity - d;
       if (xr >= 0 && xr < cols) best_right[xr] = last[d] == 255 ? -1 : last[d];
@@ -157,20 +143,22 @@ void fusedWinnersN(const uint8_t* const paths[4], int cols, int min_disparity, W
   }
 }
 
-void fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+// The fused loop for D = B::kLanes * NB with NB from 1 to kMaxNB; false for other D.
+template <class B, int NB, int kMaxNB>
+bool fusedWinners(const uint8_t* const paths[4], int cols, int D, int min_disparity,
                   WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
                   int16_t* best_right) {
-  switch (D / 32) {
-    case 1: return fusedWinnersN<1>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    case 2: return fusedWinnersN<2>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    case 3: return fusedWinnersN<3>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    case 4: return fusedWinnersN<4>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    case 5: return fusedWinnersN<5>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    case 6: return fusedWinnersN<6>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
-    default: return fusedWinnersN<7>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+  if constexpr (NB > kMaxNB) {
+    return false;
+  } else {
+    if (D == B::kLanes * NB) {
+      fusedWinnersN<B, NB>(paths, cols, min_disparity, opt, best, disparity, confidence, best_right);
+      return true;
+    }
+    return fusedWinners<B, NB + 1, kMaxNB>(paths, cols, D, min_disparity, opt, best, disparity,
+                                           confidence, best_right);
   }
 }
-#endif
 
 }  // namespace
 
@@ -215,17 +203,32 @@ void refineSubpixel(const uint8_t* const p[4], int cols, int D, const int16_t* b
     if (best[x] > 0 && best[x] + 1 < D) refinePixel(p, static_cast<size_t>(x) * D, best[x], disparity[x]);
 }
 
+const char* winnerPath() { return widestBytesName(); }
+
+bool selectWinnersFromPaths16(const uint8_t* const paths[4], int cols, int D, int min_disparity,
+                              WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
+                              int16_t* best_right) {
+#ifdef NERV_BYTES16
+  return fusedWinners<Bytes16, 1, 15>(paths, cols, D, min_disparity, opt, best, disparity, confidence,
+                                      best_right);
+#else
+  (void)paths, (void)cols, (void)D, (void)min_disparity, (void)opt, (void)best, (void)disparity,
+      (void)confidence, (void)best_right;
+  return false;
+#endif
+}
+
 void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int D, int min_disparity,
                             WinnerOptions opt, int16_t* best, float* disparity, float* confidence,
                             int16_t* best_right, std::vector<uint8_t>& sum,
                             std::vector<uint8_t>& cost, std::vector<int16_t>& index) {
   bool done = false;
-#ifdef __AVX2__
-  if (D % 32 == 0 && D < 256) {
-    fusedWinners(paths, cols, D, min_disparity, opt, best, disparity, confidence, best_right);
-    done = true;
-  }
+#if defined(NERV_BYTES32)
+  done = fusedWinners<Bytes32, 1, 7>(paths, cols, D, min_disparity, opt, best, disparity, confidence,
+                                     best_right);
 #endif
+  if (!done) done = selectWinnersFromPaths16(paths, cols, D, min_disparity, opt, best, disparity,
+                                             confidence, best_right);
   if (!done) {
     sum.resize(static_cast<size_t>(cols) * D);
     averagePaths(paths, sum.size(), sum.data());

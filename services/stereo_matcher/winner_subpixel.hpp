@@ -49,13 +49,24 @@ void refineSubpixel(const uint8_t* const paths[4], int cols, int num_disparities
                     const int16_t* best, float* disparity);
 
 // All of the above for one row from the four path rows (cols * D bytes each),
-// fused into one AVX2 loop per pixel when D % 32 == 0 and D < 256 (the
-// averaged costs never leave L1); otherwise the separate steps. best_right may
-// be nullptr (no left-right check). Identical results either way.
+// fused into one vector loop per pixel when D < 256 fills whole registers (the averaged costs
+// never leave L1): AVX2 for D % 32 == 0, else SSE4.1 or NEON for D % 16 == 0; otherwise the
+// separate steps. best_right may be nullptr (no left-right check). Identical results either way.
 void selectWinnersFromPaths(const uint8_t* const paths[4], int cols, int num_disparities,
                             int min_disparity, WinnerOptions options, int16_t* best,
                             float* disparity, float* confidence, int16_t* best_right,
                             std::vector<uint8_t>& scratch_sum, std::vector<uint8_t>& scratch_cost,
                             std::vector<int16_t>& scratch_index);
+
+// The fused loop on 16-byte registers (SSE4.1 or NEON) alone, which an AVX2 build takes only
+// where D is an odd multiple of 16: for the tests. False, with nothing written, where the build
+// has no 16-byte registers or D is not a multiple of 16 below 256.
+bool selectWinnersFromPaths16(const uint8_t* const paths[4], int cols, int num_disparities,
+                              int min_disparity, WinnerOptions options, int16_t* best,
+                              float* disparity, float* confidence, int16_t* best_right);
+
+// The registers of the fused loop of this build for D % 32 == 0: "AVX2", "SSE4.1", "NEON",
+// or "portable loops".
+const char* winnerPath();
 
 }  // namespace nerv::stereo

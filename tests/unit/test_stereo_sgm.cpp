@@ -260,8 +260,8 @@ TEST(stereoSgm, OneMatcherReusedAcrossImageSizesEqualsFreshOnes) {
 TEST(stereoSgm, PathStepSimdEqualsScalar) {
   if (!pathSimdAvailable()) GTEST_SKIP() << "built without a vector path step (no AVX2, NEON or SSE4.1)";
   std::mt19937 rng(7);
-  // Register-multiple lengths, with and without a 64-byte multiple; 16 and 48 are vector
-  // lengths only for the 16-byte steps (NEON, SSE4.1), which the AVX2 build leaves scalar.
+  // Register-multiple lengths, with and without a 64-byte multiple; 16 and 48 take the 16-byte
+  // step (SSE4.1 or NEON) on every build that has one, an AVX2 build included.
   for (const int D : {16, 48, 64, 96, 128}) {
   std::vector<uint8_t> cost(D), prev(D), a(D), b(D);
   for (int trial = 0; trial < 2000; ++trial) {
@@ -325,11 +325,14 @@ TEST(stereoSgm, CensusCostSimdEqualsScalar) {
 TEST(stereoSgm, CodePathsNameTheBuild) {
   const std::string paths = ownSgmCodePaths();
 #if defined(__AVX2__)
-  EXPECT_NE(paths.find("path steps and winners AVX2"), std::string::npos) << paths;
-#else
-  EXPECT_NE(paths.find(std::string("path steps ") + pathStepPath() + ", winners in portable loops (no AVX2)"),
+  EXPECT_NE(paths.find("path steps and winners AVX2, "), std::string::npos) << paths;
+#elif defined(__SSE4_1__) || defined(__ARM_NEON)
+  EXPECT_NE(paths.find(std::string("path steps and winners ") + pathStepPath() + " (no AVX2), "),
             std::string::npos) << paths;
+#else
+  EXPECT_NE(paths.find("path steps and winners portable loops (no AVX2), "), std::string::npos) << paths;
 #endif
+  EXPECT_EQ(std::string(winnerPath()), pathStepPath());
   EXPECT_NE(paths.find(std::string("census costs ") + censusCostPath()), std::string::npos) << paths;
 }
 
@@ -472,9 +475,11 @@ TEST(stereoSgm, EveryAlgorithmRunsAndReducedResolutionKeepsSize) {
 }
 
 TEST(stereoSgm, FusedWinnersEqualSeparateSteps) {
-  // random path costs with many ties; every D the fused loop takes, min_disparity > 0
+  // random path costs with many ties; every D the fused loops take (the 16-byte one, which
+  // an AVX2 build runs only for D = 16, 48, ..., on its own as well), min_disparity > 0
   std::mt19937 rng(3);
-  for (int D : {32, 96, 128}) {
+  int fused16 = 0;
+  for (int D : {16, 32, 48, 96, 128, 240}) {
     const int cols = 300;
     std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(static_cast<size_t>(cols) * D));
     for (auto& r : rows)
@@ -497,7 +502,20 @@ TEST(stereoSgm, FusedWinnersEqualSeparateSteps) {
     EXPECT_EQ(right_a, right_b) << D;
     EXPECT_EQ(disp_a, disp_b) << D;
     EXPECT_EQ(conf_a, conf_b) << D;
+    std::vector<int16_t> best_c(cols, 7), right_c(cols, 7);
+    std::vector<float> disp_c(cols), conf_c(cols);
+    if (selectWinnersFromPaths16(paths, cols, D, 5, opt, best_c.data(), disp_c.data(), conf_c.data(),
+                                 right_c.data())) {
+      EXPECT_EQ(best_c, best_b) << "16-byte loop, D " << D;
+      EXPECT_EQ(right_c, right_b) << "16-byte loop, D " << D;
+      EXPECT_EQ(disp_c, disp_b) << "16-byte loop, D " << D;
+      EXPECT_EQ(conf_c, conf_b) << "16-byte loop, D " << D;
+      ++fused16;
+    }
     EXPECT_GT(std::count(best_a.begin(), best_a.end(), -1), 0) << "uniqueness test exercised";
     EXPECT_GT(std::count_if(best_a.begin(), best_a.end(), [](int16_t b) { return b >= 0; }), 0);
   }
+#if defined(__SSE4_1__) || defined(__ARM_NEON)
+  EXPECT_EQ(fused16, 6) << "the 16-byte loop ran on every D";
+#endif
 }
