@@ -87,13 +87,19 @@ run_pipeline() {  # run_pipeline NAME DATA [ARGS...]: tools/nerv run of DATA int
 # config, its nerv_source sending 6 urban frames; fails unless every one is detected.
 # Sets INSTALLED_RUN to the source's last words ("sent 6 frames in ... s, 6 with DETECTIONS");
 # not called in $(...), so a failure ends the test and its children are stopped.
-run_installed_pipeline() {  # run_installed_pipeline BINDIR CONFIG WORKDIR
+# run_installed_pipeline BINDIR CONFIG WORKDIR: nerv_up and its services from BINDIR on 6 frames
+# of the urban scene; every frame must be detected. INSTALLED_AS (an array, may be empty): a
+# command nerv_up runs under, e.g. setpriv to run it as another user.
+INSTALLED_AS=()
+run_installed_pipeline() {
   local bin=$1 config=$2 work=$3 data
   data=$(synthetic_sequence urban 6)
-  start_child "$work/up.log" "$bin/nerv_up" --config "$config" --lcm-url "$URL" --quiet
+  start_child "$work/up.log" "${INSTALLED_AS[@]}" "$bin/nerv_up" --config "$config" --lcm-url "$URL" --quiet
   "$bin/nerv_source" --data "$data" --rate 5 --lcm-url "$URL" --drain-timeout 20 \
     --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$work/source.log" \
     || fail "the pipeline of $bin did not detect every frame: $(tail -c 300 "$work/source.log"; cat "$work/up.log")"
+  # who ran them: nerv_up and its four services (INSTALLED_USERS, e.g. "5 nobody")
+  INSTALLED_USERS=$(pgrep -f "^(/usr/bin/qemu-aarch64-static )?$bin/" | xargs -r ps -o user= -p | sort | uniq -c | sed 's/^ *//')
   stop_children
   INSTALLED_RUN=$(tail -n1 "$work/source.log" | grep -o 'sent [0-9]* frames.*')
 }

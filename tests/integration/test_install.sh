@@ -18,6 +18,7 @@ done
 unit="$p/lib/systemd/system/nerv.service"
 grep -qx "ExecStart=$p/bin/nerv_up --config $p/etc/nerv/pipeline.yaml --quiet" "$unit" \
   || fail "the unit does not start the installed nerv_up on the installed config: $(grep ExecStart "$unit")"
+grep -qx "DynamicUser=yes" "$unit" || fail "the unit runs nerv as root: no DynamicUser=yes"
 grep -qx "net.core.rmem_max = 4194304" "$p/lib/sysctl.d/60-nerv-lcm.conf" || fail "sysctl file without rmem_max"
 if command -v systemd-analyze >/dev/null; then
   out=$(systemd-analyze verify "$unit" 2>&1) || fail "systemd-analyze verify: $out"
@@ -39,4 +40,18 @@ run_installed_pipeline "$p/bin" "$p/etc/nerv/pipeline.yaml" "$tmp"
 pass "the installed nerv_up and services, moved elsewhere: $INSTALLED_RUN"
 no_survivors || fail "processes survived"
 pgrep -f "^$p/bin/" >/dev/null && fail "installed processes survived"
-echo "3 passed, 0 failed"
+
+# The unit runs it as an unprivileged user of its own (DynamicUser): the pipeline needs no
+# privilege. Here as nobody, which owns nothing and may write nowhere in the prefix.
+if [[ $EUID -eq 0 ]] && command -v setpriv >/dev/null; then
+  chmod 755 "$tmp"
+  INSTALLED_AS=(setpriv --reuid=nobody --regid=nogroup --clear-groups --no-new-privs)
+  run_installed_pipeline "$p/bin" "$p/etc/nerv/pipeline.yaml" "$tmp"
+  INSTALLED_AS=()
+  [[ "$INSTALLED_USERS" == "5 nobody" ]] || fail "nerv_up and its services should run as nobody: $INSTALLED_USERS"
+  pass "as nobody, with nothing writable (the unit's DynamicUser=yes): $INSTALLED_RUN"
+else
+  pass "the unit has DynamicUser=yes (not root, or no setpriv: the run as nobody was left out)"
+fi
+no_survivors || fail "processes survived"
+echo "4 passed, 0 failed"
