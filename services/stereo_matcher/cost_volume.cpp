@@ -125,9 +125,8 @@ void censusCostRangeNeon(const uint32_t* left, const uint32_t* right_reversed, i
 
 // The loop this build runs and its name, chosen once for both.
 namespace {
-using CostLoop = void (*)(const uint32_t*, const uint32_t*, int, int, int, int, int, uint8_t*);
 struct ChosenCostLoop {
-  CostLoop loop;
+  CensusCostLoop loop;
   const char* name;
 };
 #if defined(__AVX2__) && !defined(__AVX512VPOPCNTDQ__)

@@ -31,6 +31,10 @@ void censusCostRange(const uint32_t* left, const uint32_t* right_reversed, int c
 // Which of the loops below censusCostRange runs in this build.
 const char* censusCostPath();
 
+// The signature every cost loop below shares (that of censusCostRange).
+using CensusCostLoop = void (*)(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0,
+                                int x1, int min_disparity, int num_disparities, uint8_t* out);
+
 // The plain loop, and the AVX2 one (32 costs at a time: a nibble table per byte, bytes
 // summed per lane, packed to bytes), which give the same bytes.
 void censusCostRangeScalar(const uint32_t* left, const uint32_t* right_reversed, int cols, int x0, int x1,

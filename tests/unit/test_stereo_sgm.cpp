@@ -284,8 +284,7 @@ TEST(stereoSgm, PathStepSimdEqualsScalar) {
 // any 32-bit codes (not only 31-bit census), D a multiple of 32 or 16 or neither,
 // min_disparity > 0, a column range that does not start at 0. So does the dispatcher.
 TEST(stereoSgm, CensusCostSimdEqualsScalar) {
-  using CostLoop = void (*)(const uint32_t*, const uint32_t*, int, int, int, int, int, uint8_t*);
-  std::vector<std::pair<const char*, CostLoop>> loops = {{"dispatch", censusCostRange}};
+  std::vector<std::pair<const char*, CensusCostLoop>> loops = {{"dispatch", censusCostRange}};
 #if defined(__AVX2__)
   loops.push_back({"AVX2", censusCostRangeAvx2});
 #endif
