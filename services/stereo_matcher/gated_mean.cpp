@@ -2,13 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
-#ifdef __AVX2__
-#include <immintrin.h>
-#endif
-
 namespace nerv::stereo {
+
+namespace {
+// Pixels a step of the vector loop: GCC's vector types, which it compiles to AVX2 (8 floats),
+// SSE (4) or NEON (4) alike.
+#ifdef __AVX2__
+constexpr int kLanes = 8;
+#else
+constexpr int kLanes = 4;
+#endif
+typedef float Floats __attribute__((vector_size(4 * kLanes)));
+typedef int32_t Lanes __attribute__((vector_size(4 * kLanes)));
+
+inline Floats loadFloats(const float* p) {
+  Floats v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+}  // namespace
 
 void gatedMeanRows(const cv::Mat& before, cv::Mat& disparity, const GatedMeanParams& p, int row_begin,
                    int row_end) {
@@ -40,28 +56,25 @@ void gatedMeanRows(const cv::Mat& before, cv::Mat& disparity, const GatedMeanPar
     };
     int x = 0;
     for (; x < std::min(r, cols); ++x) pixel(x);
-#ifdef __AVX2__
-    // Eight pixels at a time where the whole window lies inside the row; the
-    // sums stay in registers over the window.
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-    const __m256 range_px = _mm256_set1_ps(p.range_px), range_rel = _mm256_set1_ps(p.range_rel);
-    for (; x + 8 <= cols - r; x += 8) {
-      const __m256 cv = _mm256_loadu_ps(c + x);
-      const __m256 gate = _mm256_max_ps(range_px, _mm256_mul_ps(range_rel, cv));
-      __m256 sum = zero, count = zero;
+    // kLanes pixels at a time where the whole window lies inside the row; the sums stay in
+    // registers over the window, added in the scalar pixel's order (the same floats).
+    const Floats zero = Floats{}, one = zero + 1.0f;
+    for (; x + kLanes <= cols - r; x += kLanes) {
+      const Floats cv = loadFloats(c + x);
+      const Floats scaled = p.range_rel * cv;
+      const Floats gate = scaled > p.range_px ? scaled : zero + p.range_px;
+      Floats sum = zero, count = zero;
       for (const float* w : window)
         for (int dx = -r; dx <= r; ++dx) {
-          const __m256 q = _mm256_loadu_ps(w + x + dx);
-          const __m256 in = _mm256_and_ps(_mm256_cmp_ps(q, zero, _CMP_GT_OQ),
-                                          _mm256_cmp_ps(_mm256_and_ps(_mm256_sub_ps(q, cv), abs_mask), gate, _CMP_LE_OQ));
-          sum = _mm256_add_ps(sum, _mm256_and_ps(in, q));
-          count = _mm256_add_ps(count, _mm256_and_ps(in, one));
+          const Floats q = loadFloats(w + x + dx);
+          const Floats distance = (Floats)((Lanes)(q - cv) & 0x7fffffff);  // |q - c|: the sign bit off
+          const Lanes in = (q > 0.0f) & (distance <= gate);                 // all ones or zero
+          sum += (Floats)(in & (Lanes)q);
+          count += (Floats)(in & (Lanes)one);
         }
-      const __m256 valid = _mm256_cmp_ps(cv, zero, _CMP_GT_OQ);
-      _mm256_storeu_ps(out + x, _mm256_blendv_ps(cv, _mm256_div_ps(sum, count), valid));
+      const Floats mean = cv > 0.0f ? sum / count : cv;
+      std::memcpy(out + x, &mean, sizeof mean);
     }
-#endif
     for (; x < cols; ++x) pixel(x);
   }
 }

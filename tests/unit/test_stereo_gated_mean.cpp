@@ -66,6 +66,29 @@ TEST(stereoGatedMean, MatchesThePlainReferenceOnRandomMapsWithHoles) {
   }
 }
 
+// The vector loop (8 or 4 pixels a step) and the per-pixel one at the row's ends give the same
+// floats, not only close ones: the map shifted right by s invalid columns puts each pixel in
+// the other loop or another lane, and nothing else changes (invalid pixels are not averaged).
+TEST(stereoGatedMean, VectorAndPixelLoopsGiveTheSameFloats) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> noise(-0.6f, 0.6f);
+  cv::Mat d(9, 45, CV_32F);
+  for (int y = 0; y < d.rows; ++y)
+    for (int x = 0; x < d.cols; ++x)
+      d.at<float>(y, x) = rng() % 6 == 0 ? 0.0f : 4.0f + 9.0f * ((x / 6) % 3) + noise(rng);
+  for (const GatedMeanParams p : {GatedMeanParams{2, 0.5f, 0.05f}, GatedMeanParams{3, 0.3f, 0.1f}}) {
+    const cv::Mat a = run(d, p);
+    for (int s = 1; s <= 8; ++s) {
+      cv::Mat shifted = cv::Mat::zeros(d.rows, d.cols + s, CV_32F);
+      d.copyTo(shifted(cv::Rect(s, 0, d.cols, d.rows)));
+      const cv::Mat b = run(shifted, p)(cv::Rect(s, 0, d.cols, d.rows));
+      for (int y = 0; y < d.rows; ++y)
+        for (int x = 0; x < d.cols; ++x)
+          ASSERT_EQ(a.at<float>(y, x), b.at<float>(y, x)) << "shift " << s << " at " << x << "," << y;
+    }
+  }
+}
+
 TEST(stereoGatedMean, KeepsDepthEdgesAndHolesAndAPlane) {
   // a slanted plane (disparity linear in x and y) with a nearer box in front and a hole
   cv::Mat d(40, 60, CV_32F);
