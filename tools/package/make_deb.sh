@@ -29,21 +29,38 @@ done
 [[ -x "$build/bin/nerv_up" ]] || die "$build/bin/nerv_up is missing: build first"
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
 # A cross build (tools/nerv cross) has another architecture's binaries, whose Depends
-# dpkg-shlibdeps cannot find among this computer's packages: refuse rather than label
-# aarch64 programs with this computer's architecture.
-[[ -z "$(cache CMAKE_TOOLCHAIN_FILE)" ]] ||
-  die "$build is a cross build ($(cache CMAKE_TOOLCHAIN_FILE)); packages are made on the architecture they are for (build nerv on that computer, or in an arm64 Debian container)"
+# dpkg-shlibdeps cannot find among this computer's packages: they come from the shlibs files
+# of the Debian packages its sysroot was made of (tools/cross/arm64_sysroot.sh keeps them).
+sysroot=""
+arch=$(dpkg --print-architecture)
+cxx=$(cache CMAKE_CXX_COMPILER)
+if [[ -n "$(cache CMAKE_TOOLCHAIN_FILE)" ]]; then
+  command -v readelf >/dev/null || die "readelf is missing (Debian package binutils)"
+  machine=$(readelf -h "$build/bin/nerv_up" | sed -n 's/^ *Machine: *//p')
+  [[ "$machine" == AArch64 ]] ||
+    die "$build is a cross build for '$machine'; only aarch64 ones (tools/nerv cross) are packaged"
+  cxx=aarch64-linux-gnu-g++
+  sysroot=$(cache NERV_SYSROOT)
+  compgen -G "$sysroot/debs/*.deb" >/dev/null ||
+    die "$build is a cross build whose sysroot '$sysroot' has no debs/ (tools/cross/arm64_sysroot.sh keeps them there): its Depends come from their shlibs files"
+  command -v qemu-aarch64-static >/dev/null || die "qemu-aarch64-static is missing (Debian package qemu-user-static): it reads the build's version"
+  arch=arm64
+fi
 
 # Version: the project's, then the commit count (so a later commit sorts higher for apt) and
 # hash of the build's source, as `nerv_up --version` says it: nerv 0.1.0 (6bc2d5f[-dirty]).
-stamp=$("$build/bin/nerv_up" --version | sed -n 's/^nerv_up: nerv \([^ ]*\) (\(.*\))$/\1 \2/p')
+if [[ -n "$sysroot" ]]; then
+  stamp=$(qemu-aarch64-static -L "$sysroot" "$build/bin/nerv_up" --version) || die "$build/bin/nerv_up --version failed under qemu"
+else
+  stamp=$("$build/bin/nerv_up" --version) || die "$build/bin/nerv_up --version failed"
+fi
+stamp=$(sed -n 's/^nerv_up: nerv \([^ ]*\) (\(.*\))$/\1 \2/p' <<<"$stamp")
 [[ -n "$stamp" ]] || die "cannot read the build's version from nerv_up --version"
 read -r project describe <<<"$stamp"
 hash=${describe%-dirty}
 count=$(git -C "$root" rev-list --count "$hash" 2>/dev/null) || die "commit $hash of the build is not in $root"
 version="$project+$count.g$hash"
 [[ "$describe" == *-dirty ]] && version+=".dirty"
-arch=$(dpkg --print-architecture)
 
 # The instruction sets the compiler may use for this build's -march.
 march=""
@@ -53,14 +70,19 @@ if [[ "$(cache NERV_NATIVE)" != OFF ]]; then
 fi
 required=()
 if [[ -n "$march" ]]; then
-  cxx=$(cache CMAKE_CXX_COMPILER)
+  # the compiler's macro -> the name /proc/cpuinfo gives the feature (x86 "flags", ARM "Features")
   declare -A flag=(
     [__SSE4_1__]=sse4_1 [__SSE4_2__]=sse4_2 [__POPCNT__]=popcnt [__AVX__]=avx [__AVX2__]=avx2 [__FMA__]=fma
     [__F16C__]=f16c [__BMI__]=bmi1 [__BMI2__]=bmi2 [__MOVBE__]=movbe [__LZCNT__]=abm [__SSE4A__]=sse4a
     [__AVX512F__]=avx512f [__AVX512BW__]=avx512bw [__AVX512VL__]=avx512vl [__AVX512DQ__]=avx512dq
     [__AVX512CD__]=avx512cd [__AVX512VBMI__]=avx512vbmi [__AVX512VBMI2__]=avx512_vbmi2
     [__AVX512IFMA__]=avx512ifma [__AVX512VNNI__]=avx512_vnni [__AVX512BITALG__]=avx512_bitalg
-    [__AVX512VPOPCNTDQ__]=avx512_vpopcntdq [__AVX512BF16__]=avx512_bf16)
+    [__AVX512VPOPCNTDQ__]=avx512_vpopcntdq [__AVX512BF16__]=avx512_bf16
+    [__ARM_NEON]=asimd [__ARM_FEATURE_CRC32]=crc32 [__ARM_FEATURE_ATOMICS]=atomics
+    [__ARM_FEATURE_QRDMX]=asimdrdm [__ARM_FEATURE_DOTPROD]=asimddp [__ARM_FEATURE_FP16_SCALAR_ARITHMETIC]=fphp
+    [__ARM_FEATURE_FP16_VECTOR_ARITHMETIC]=asimdhp [__ARM_FEATURE_JCVT]=jscvt [__ARM_FEATURE_COMPLEX]=fcma
+    [__ARM_FEATURE_MATMUL_INT8]=i8mm [__ARM_FEATURE_BF16_VECTOR_ARITHMETIC]=bf16 [__ARM_FEATURE_SVE]=sve
+    [__ARM_FEATURE_SVE2]=sve2 [__ARM_FEATURE_AES]=aes [__ARM_FEATURE_SHA2]=sha2)
   while read -r _ macro _; do
     [[ -n "${flag[$macro]:-}" ]] && required+=("${flag[$macro]}")
   done < <("$cxx" -march="$march" -dM -E - </dev/null)
@@ -90,12 +112,34 @@ done
 # Depends: the shared libraries' packages, as dpkg-shlibdeps reads them from the binaries.
 mapfile -t elves < <(find "$stage/opt/nerv/bin" -type f -exec sh -c 'head -c 4 "$1" | grep -q ELF' _ {} \; -print)
 (( ${#elves[@]} > 0 )) || die "no programs in the install"
-mkdir -p "$stage/debian"
-printf 'Source: nerv\n\nPackage: nerv\nArchitecture: any\n' >"$stage/debian/control"
-shlibs=$(cd "$stage" && dpkg-shlibdeps -O -e"${elves[@]}" 2>"$stage/shlibdeps.log") \
-  || { cat "$stage/shlibdeps.log" >&2; die "dpkg-shlibdeps failed"; }
-rm -r "$stage/debian" "$stage/shlibdeps.log"
-depends=${shlibs#shlibs:Depends=}
+if [[ -z "$sysroot" ]]; then
+  mkdir -p "$stage/debian"
+  printf 'Source: nerv\n\nPackage: nerv\nArchitecture: any\n' >"$stage/debian/control"
+  shlibs=$(cd "$stage" && dpkg-shlibdeps -O -e"${elves[@]}" 2>"$stage/shlibdeps.log") \
+    || { cat "$stage/shlibdeps.log" >&2; die "dpkg-shlibdeps failed"; }
+  rm -r "$stage/debian" "$stage/shlibdeps.log"
+  depends=${shlibs#shlibs:Depends=}
+else
+  # A cross build: each library the programs need (readelf's NEEDED, libNAME.so.VERSION or
+  # libNAME-VERSION.so), looked up as "NAME VERSION dependency" in the shlibs control files of
+  # the sysroot's packages, which is what dpkg-shlibdeps falls back to where a library has no
+  # symbols file. Their versions are the sysroot's: Debian 12's.
+  for deb in "$sysroot"/debs/*.deb; do dpkg-deb -I "$deb" shlibs 2>/dev/null || true; done |
+    awk 'NF >= 3 && $1 !~ /:$/ && $1 !~ /^#/' >"$stage.shlibs"
+  depends=$(readelf -d "${elves[@]}" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort -u |
+    while read -r so; do
+      if [[ "$so" =~ ^(.+)\.so\.(.+)$ || "$so" =~ ^(.+)-([0-9][0-9.]*)\.so$ ]]; then
+        dep=$(awk -v n="${BASH_REMATCH[1]}" -v v="${BASH_REMATCH[2]}" \
+          '$1 == n && $2 == v { $1 = ""; $2 = ""; sub(/^ +/, ""); print; exit }' "$stage.shlibs")
+      else
+        dep=""
+      fi
+      echo "${dep:-MISSING $so}"
+    done | sort -u | paste -sd, | sed 's/,/, /g')
+  rm -f "$stage.shlibs"
+  [[ "$depends" != *MISSING* ]] ||
+    die "no package of the sysroot declares these libraries in its shlibs: $(grep -o 'MISSING [^,]*' <<<"$depends" | cut -d' ' -f2 | paste -sd' ')"
+fi
 [[ -n "$depends" ]] || die "dpkg-shlibdeps found no dependencies"
 depends+=", liblcm-bin"
 
@@ -120,6 +164,11 @@ installed_kb=$(du -sk --exclude=DEBIAN "$stage" | cut -f1)
 } >"$stage/DEBIAN/control"
 echo "/etc/nerv/pipeline.yaml" >"$stage/DEBIAN/conffiles"
 
+if [[ -n "$sysroot" ]]; then
+  march_hint="tools/nerv cross --package --march armv8-a, armv8.2-a, ..."
+else
+  march_hint="tools/nerv package --march x86-64-v2, -v3 or -v4"
+fi
 # preinst: the CPU check. NERV_CPUINFO lets the test give it another CPU's flags.
 cat >"$stage/DEBIAN/preinst" <<EOF
 #!/bin/sh
@@ -128,13 +177,13 @@ required="${required[*]}"
 cpuinfo="\${NERV_CPUINFO:-/proc/cpuinfo}"
 [ -n "\$required" ] || exit 0
 [ -r "\$cpuinfo" ] || { echo "nerv: \$cpuinfo is unreadable: cannot check that this CPU runs the build" >&2; exit 0; }
-flags=" \$(grep -m1 '^flags' "\$cpuinfo" | cut -d: -f2) "
+flags=" \$(grep -m1 -E '^(flags|Features)' "\$cpuinfo" | cut -d: -f2) "  # x86, ARM
 missing=""
 for f in \$required; do
   case "\$flags" in *" \$f "*) ;; *) missing="\$missing \$f" ;; esac
 done
 if [ -n "\$missing" ]; then
-  echo "nerv: this package was built with -march=$march, and this CPU lacks:\$missing; its services would die of SIGILL. Build nerv on this computer, or package it with a -march this CPU has (tools/nerv package --march x86-64-v2, -v3 or -v4)" >&2
+  echo "nerv: this package was built with -march=$march, and this CPU lacks:\$missing; its services would die of SIGILL. Build nerv on this computer, or package it with a -march this CPU has ($march_hint)" >&2
   exit 1
 fi
 exit 0
