@@ -12,8 +12,9 @@
 #   /etc/nerv/pipeline.yaml      the config the unit reads; a dpkg conffile, so an upgrade
 #                                keeps the vehicle's edits (and asks when both changed)
 #   /lib/systemd/system/nerv.service, /usr/lib/sysctl.d/60-nerv-lcm.conf
-# Depends come from dpkg-shlibdeps on the binaries, plus liblcm-bin (lcm-logger, for
-# run.record). The binaries are compiled for the build's -march (NERV_MARCH, `native` by
+# Depends come from dpkg-shlibdeps on the binaries (for an aarch64 cross build, tools/nerv
+# cross --package: from the shlibs files of its sysroot's arm64 packages), plus liblcm-bin
+# (lcm-logger, for run.record). The binaries are compiled for the build's -march (NERV_MARCH, `native` by
 # default): preinst refuses a computer whose CPU lacks an instruction set the build uses,
 # with a line naming it, instead of services that die of SIGILL in a restart loop.
 set -euo pipefail
