@@ -10,15 +10,18 @@
 #include <cstdlib>
 #include <memory>
 
-#ifdef __AVX2__
-#include <immintrin.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
 #endif
 
 namespace nerv::stereo {
 
-// Makes streamed data visible to other threads (before they read the volume).
+// Makes streamed data visible to other threads (before they read the volume). On x86 the
+// path steps stream with AVX2 or, without it, SSE (simd_bytes.hpp), so any x86 build fences;
+// NEON has no non-temporal store (its "stream" is a plain store, which the threads' own
+// synchronisation orders).
 inline void streamingFence() {
-#ifdef __AVX2__
+#if defined(__SSE__)
   _mm_sfence();
 #endif
 }
