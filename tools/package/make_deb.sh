@@ -92,7 +92,7 @@ fi
 
 stage=$(mktemp -d)
 chmod 0755 "$stage"  # the package's ./ entry: mktemp's 0700 would be the installed /
-trap 'rm -rf "$stage"' EXIT
+trap 'rm -rf "$stage" "$stage.shlibs" "$stage.install.log"' EXIT
 DESTDIR="$stage" cmake --install "$build" --prefix /opt/nerv >"$stage.install.log" 2>&1 \
   || { cat "$stage.install.log" >&2; rm -f "$stage.install.log"; die "cmake --install failed"; }
 rm -f "$stage.install.log"
