@@ -40,28 +40,27 @@ NERV_SIMD_INLINE uint8_t stepBytes(const uint8_t* cost, const uint8_t* prev, uin
   return B::minLane(running);
 }
 
-// The build's widest step: AVX2, else SSE4.1 or NEON (the 16-byte one is the AVX2 step's
-// arithmetic, register for register: stereoSgm.PathStepSimdEqualsScalar).
-// Calls body(B{}) with the widest byte vector of this build whose register D fills (32 lanes
-// with AVX2, else 16 with SSE4.1 or NEON; an AVX2 build also takes the 16-byte step for D = 16,
-// 48, ...). False, without calling it, when there is none or simd is off.
+// Calls body(B{}, p1v, p2v) with the widest byte vector B of this build whose register D fills
+// (32 lanes with AVX2, else 16 with SSE4.1 or NEON; an AVX2 build also takes the 16-byte step
+// for D = 16, 48, ...; the 16-byte step is the AVX2 step's arithmetic, register for register:
+// stereoSgm.PathStepSimdEqualsScalar) and the penalties splat into B's registers. False,
+// without calling it, when there is none or simd is off.
 template <class Body>
-NERV_SIMD_INLINE bool withStepBytes(int D, bool simd, Body&& body) {
+NERV_SIMD_INLINE bool withStepBytes(int D, bool simd, PathPenalties pen, Body&& body) {
   if (!simd) return false;
-#ifdef NERV_BYTES32
-  if (D % Bytes32::kLanes == 0) {
-    body(Bytes32{});
+  auto run = [&](auto bytes) {
+    using B = decltype(bytes);
+    body(bytes, B::splat(static_cast<uint8_t>(pen.p1)), B::splat(static_cast<uint8_t>(pen.p2)));
     return true;
-  }
+  };
+#ifdef NERV_BYTES32
+  if (D % Bytes32::kLanes == 0) return run(Bytes32{});
 #endif
 #ifdef NERV_BYTES16
-  if (D % Bytes16::kLanes == 0) {
-    body(Bytes16{});
-    return true;
-  }
+  if (D % Bytes16::kLanes == 0) return run(Bytes16{});
 #endif
   (void)D;
-  (void)body;
+  (void)run;
   return false;
 }
 
@@ -114,10 +113,8 @@ uint8_t pathStepScalar(const uint8_t* cost, const uint8_t* prev, uint8_t prev_mi
 uint8_t pathStepSimd(const uint8_t* cost, const uint8_t* prev, uint8_t prev_min, uint8_t* out,
                      int D, PathPenalties pen) {
   uint8_t least = 0;
-  const bool vector = withStepBytes(D, true, [&](auto bytes) {
-    using B = decltype(bytes);
-    least = stepBytes<B>(cost, prev, prev_min, out, D, B::splat(static_cast<uint8_t>(pen.p1)),
-                         B::splat(static_cast<uint8_t>(pen.p2)));
+  const bool vector = withStepBytes(D, true, pen, [&](auto bytes, auto p1v, auto p2v) {
+    least = stepBytes<decltype(bytes)>(cost, prev, prev_min, out, D, p1v, p2v);
   });
   return vector ? least : pathStepScalar(cost, prev, prev_min, out, D, pen);
 }
@@ -159,9 +156,8 @@ void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties 
                             uint8_t* forward, uint8_t* backward) {
   if (cols <= 0) return;
   const std::vector<uint8_t> zeros(D, 0);
-  const bool vector = withStepBytes(D, simd, [&](auto bytes) {
+  const bool vector = withStepBytes(D, simd, pen, [&](auto bytes, auto p1v, auto p2v) {
     using B = decltype(bytes);
-    const typename B::V p1v = B::splat(static_cast<uint8_t>(pen.p1)), p2v = B::splat(static_cast<uint8_t>(pen.p2));
     walkRowBothWays(cost, cols, D, zeros.data(), forward, backward,
                     [&](const uint8_t* c, const uint8_t* prev, uint8_t prev_min, uint8_t* out) {
                       return stepBytes<B>(c, prev, prev_min, out, D, p1v, p2v);
@@ -177,9 +173,8 @@ void aggregateRowHorizontal(const uint8_t* cost, int cols, int D, PathPenalties 
 void aggregateRowVertical(const uint8_t* cost, const uint8_t* prev_row, const uint8_t* prev_min,
                           int cols, int D, PathPenalties pen, bool simd, uint8_t* out_row,
                           uint8_t* out_min, uint8_t* stream_row) {
-  const bool vector = withStepBytes(D, simd, [&](auto bytes) {
+  const bool vector = withStepBytes(D, simd, pen, [&](auto bytes, auto p1v, auto p2v) {
     using B = decltype(bytes);
-    const typename B::V p1v = B::splat(static_cast<uint8_t>(pen.p1)), p2v = B::splat(static_cast<uint8_t>(pen.p2));
     walkRowDown(prev_row, prev_min, cols, D, out_min, [&](size_t o, const uint8_t* prev, uint8_t least) {
       return stepBytes<B>(cost + o, prev, least, out_row + o, D, p1v, p2v, stream_row ? stream_row + o : nullptr);
     });
