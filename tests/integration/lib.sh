@@ -14,10 +14,12 @@ LOGGER_PATTERN="lcm-logger --lcm-url=$(printf '%s' "$URL" | sed 's/[][\.*^$?+(){
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 pass() { echo "ok: $*"; }
-# PIDs of the build's programs whose command line starts with $BIN/$1 ("stixel " for the
-# stixel stage, "" for any). A cross build's tests (tools/nerv cross --test) run them through
-# binfmt_misc, which puts the emulator in front: /usr/bin/qemu-aarch64-static $BIN/stixel ...
-nerv_pgrep() { pgrep -f "^(/usr/bin/qemu-aarch64-static )?$BIN/$1"; }
+# PIDs of the programs whose command line starts with $1 (a path, e.g. "$BIN/stixel "). A cross
+# build's tests (tools/nerv cross --test) run them through binfmt_misc, which puts the
+# emulator in front: /usr/bin/qemu-aarch64-static $BIN/stixel ...
+pgrep_program() { pgrep -f "^(/usr/bin/qemu-aarch64-static )?$1"; }
+# The same for the build's programs: $BIN/$1 ("stixel " for the stixel stage, "" for any).
+nerv_pgrep() { pgrep_program "$BIN/$1"; }
 
 enter_private_bus() {
   if [[ "${NERV_IN_NETNS:-}" == 1 ]]; then return; fi
@@ -99,7 +101,7 @@ run_installed_pipeline() {
     --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$work/source.log" \
     || fail "the pipeline of $bin did not detect every frame: $(tail -c 300 "$work/source.log"; cat "$work/up.log")"
   # who ran them: nerv_up and its four services (INSTALLED_USERS, e.g. "5 nobody")
-  INSTALLED_USERS=$(pgrep -f "^(/usr/bin/qemu-aarch64-static )?$bin/" | xargs -r ps -o user= -p | sort | uniq -c | sed 's/^ *//')
+  INSTALLED_USERS=$(pgrep_program "$bin/" | xargs -r ps -o user= -p | sort | uniq -c | sed 's/^ *//')
   stop_children
   INSTALLED_RUN=$(tail -n1 "$work/source.log" | grep -o 'sent [0-9]* frames.*')
 }

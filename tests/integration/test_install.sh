@@ -39,7 +39,7 @@ p="$tmp/moved"
 run_installed_pipeline "$p/bin" "$p/etc/nerv/pipeline.yaml" "$tmp"
 pass "the installed nerv_up and services, moved elsewhere: $INSTALLED_RUN"
 no_survivors || fail "processes survived"
-pgrep -f "^$p/bin/" >/dev/null && fail "installed processes survived"
+pgrep_program "$p/bin/" >/dev/null && fail "installed processes survived"
 
 # The unit runs it as an unprivileged user of its own (DynamicUser): the pipeline needs no
 # privilege. Here as nobody, which owns nothing and may write nowhere in the prefix.

@@ -102,7 +102,7 @@ start_child "$tmp/up.log" "$BIN/nerv_up" --config "$tmp/kept.yaml" --lcm-url "$U
 [[ -f "$state" ]] || fail "under nerv_up: nothing saved: $(grep -i 'rig state\|row_misaligned' "$tmp/up.log" | head -n 3)"
 victim=$(nerv_pgrep "stereo_matcher ") || fail "no stereo_matcher under nerv_up"
 kill -KILL "$victim"
-wait_until 20 bash -c "pgrep -f '^$BIN/stereo_matcher ' | grep -vx $victim" >/dev/null || fail "the stereo_matcher was not restarted: $(tail -n 5 "$tmp/up.log")"
+wait_until 20 bash -c "$(declare -f pgrep_program nerv_pgrep); BIN='$BIN'; nerv_pgrep 'stereo_matcher ' | grep -vx $victim" >/dev/null || fail "the stereo_matcher was not restarted: $(tail -n 5 "$tmp/up.log")"
 "$BIN/nerv_source" --data "$tmp/moved" --rate 10 --lcm-url "$URL" --drain-timeout 20 \
   --wait-for stereo_matcher,stixel,snv_extrinsic,validator 2>"$tmp/source2.log" || fail "after the kill: $(tail -c 300 "$tmp/source2.log")"
 line=$(grep "rig state: from the first frame" "$tmp/up.log" | head -n 1)
