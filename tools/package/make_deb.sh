@@ -35,6 +35,8 @@ cache() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
 sysroot=""
 arch=$(dpkg --print-architecture)
 cxx=$(cache CMAKE_CXX_COMPILER)
+runner=()  # what runs the build's programs here
+march_hint="tools/nerv package --march x86-64-v2, -v3 or -v4"  # for preinst's refusal
 if [[ -n "$(cache CMAKE_TOOLCHAIN_FILE)" ]]; then
   command -v readelf >/dev/null || die "readelf is missing (Debian package binutils)"
   machine=$(readelf -h "$build/bin/nerv_up" | sed -n 's/^ *Machine: *//p')
@@ -46,15 +48,13 @@ if [[ -n "$(cache CMAKE_TOOLCHAIN_FILE)" ]]; then
     die "$build is a cross build whose sysroot '$sysroot' has no debs/ (tools/cross/arm64_sysroot.sh keeps them there): its Depends come from their shlibs files"
   command -v qemu-aarch64-static >/dev/null || die "qemu-aarch64-static is missing (Debian package qemu-user-static): it reads the build's version"
   arch=arm64
+  runner=(qemu-aarch64-static -L "$sysroot")
+  march_hint="tools/nerv cross --package --march armv8-a, armv8.2-a, ..."
 fi
 
 # Version: the project's, then the commit count (so a later commit sorts higher for apt) and
 # hash of the build's source, as `nerv_up --version` says it: nerv 0.1.0 (6bc2d5f[-dirty]).
-if [[ -n "$sysroot" ]]; then
-  stamp=$(qemu-aarch64-static -L "$sysroot" "$build/bin/nerv_up" --version) || die "$build/bin/nerv_up --version failed under qemu"
-else
-  stamp=$("$build/bin/nerv_up" --version) || die "$build/bin/nerv_up --version failed"
-fi
+stamp=$("${runner[@]}" "$build/bin/nerv_up" --version) || die "${runner[*]} $build/bin/nerv_up --version failed"
 stamp=$(sed -n 's/^nerv_up: nerv \([^ ]*\) (\(.*\))$/\1 \2/p' <<<"$stamp")
 [[ -n "$stamp" ]] || die "cannot read the build's version from nerv_up --version"
 read -r project describe <<<"$stamp"
@@ -165,11 +165,6 @@ installed_kb=$(du -sk --exclude=DEBIAN "$stage" | cut -f1)
 } >"$stage/DEBIAN/control"
 echo "/etc/nerv/pipeline.yaml" >"$stage/DEBIAN/conffiles"
 
-if [[ -n "$sysroot" ]]; then
-  march_hint="tools/nerv cross --package --march armv8-a, armv8.2-a, ..."
-else
-  march_hint="tools/nerv package --march x86-64-v2, -v3 or -v4"
-fi
 # preinst: the CPU check. NERV_CPUINFO lets the test give it another CPU's flags.
 cat >"$stage/DEBIAN/preinst" <<EOF
 #!/bin/sh
