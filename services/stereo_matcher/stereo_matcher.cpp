@@ -4,9 +4,9 @@
 // publish at full size).
 #include "stereo_matcher.hpp"
 
-#include <opencv2/imgproc.hpp>
 
 #include "boundary_snap.hpp"
+#include "box_resample.hpp"
 #include "gated_mean.hpp"
 #include "near_field.hpp"
 #include "opencv_matchers.hpp"
@@ -85,9 +85,9 @@ std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
   return m;
 }
 
-// For slow computers: both views are averaged down by 2 (INTER_AREA), matched
-// with half the range, and the disparity scaled back (values x2, nearest-
-// neighbour upsampling so invalid pixels stay invalid and edges stay sharp).
+// For slow computers: both views are averaged down by 2 (2 x 2 blocks, box_resample.hpp),
+// matched with half the range, and the disparity scaled back (values x2, each value
+// repeated over its block, so invalid pixels stay invalid and edges stay sharp).
 class ReducedResolution : public StereoMatcher {
  public:
   explicit ReducedResolution(Params p) {
@@ -100,13 +100,12 @@ class ReducedResolution : public StereoMatcher {
   }
   void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
                cv::Mat& confidence) override {
-    const cv::Size half((left.cols + 1) / 2, (left.rows + 1) / 2);
-    cv::resize(left, small_left_, half, 0, 0, cv::INTER_AREA);
-    cv::resize(right, small_right_, half, 0, 0, cv::INTER_AREA);
+    boxMeanDownscale(left, 2, small_left_);
+    boxMeanDownscale(right, 2, small_right_);
     inner_->compute(small_left_, small_right_, small_disparity_, small_confidence_);
-    cv::resize(small_disparity_, disparity, left.size(), 0, 0, cv::INTER_NEAREST);
-    disparity *= 2.0;
-    cv::resize(small_confidence_, confidence, left.size(), 0, 0, cv::INTER_NEAREST);
+    small_disparity_ *= 2.0;
+    blockNearestUpscale(small_disparity_, 2, left.size(), disparity);
+    blockNearestUpscale(small_confidence_, 2, left.size(), confidence);
   }
   std::string name() const override { return inner_->name() + "_half"; }
 
@@ -140,8 +139,8 @@ class NearFieldExtended : public StereoMatcher {
     // 512 x 64 px the main search alone.
     near_pixels_ = 0;
     if (small.width < 2 * kLevels || small.height < 16) return;
-    cv::resize(left, small_left_, small, 0, 0, cv::INTER_AREA);
-    cv::resize(right, small_right_, small, 0, 0, cv::INTER_AREA);
+    boxMeanDownscale(left, kScale, small_left_);
+    boxMeanDownscale(right, kScale, small_right_);
     near_->compute(small_left_, small_right_, near_disparity_, near_confidence_);
     near_pixels_ = fuseNearField(disparity, confidence, near_disparity_, near_confidence_, fuse_);
   }
