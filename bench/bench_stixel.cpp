@@ -1,16 +1,18 @@
 // Stixel stage timing: estimateStixels (ground fit + free space + stixels +
 // hypotheses) against the plain per-column reference (stixel_reference.hpp) on
 // the same disparities, measured in the same run.
-//   build/bin/bench_stixel [runs]
+//   build/bin/bench_stixel [runs] [--data DIR]
 // Uses the disparities of ../shared/data/kitti_raw_0926_seq when present, twice:
 // OpenCV SGBM's (the figure of earlier rounds) and then nerv_sgm's as the
 // stixel service receives them (the pipeline's default matcher, through the
 // DISPARITY message's 1/256 px; denser, so more obstacle pixels to scan);
-// otherwise rendered synthetic scenes.
+// otherwise rendered synthetic scenes. --data DIR: the frames of that folder (a KITTI-style
+// set, e.g. build/synthetic_sets/urban_11_30) with nerv_sgm's disparities only.
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -59,10 +61,11 @@ cv::Mat nervSgm(stereo::StereoMatcher& m, const std::string& left, const std::st
   return out;
 }
 
-// KITTI 0926 with SGBM's disparities (nerv_sgm = false) or nerv_sgm's; empty without the data.
-std::vector<Input> loadKitti(bool nerv_sgm) {
+// The frames of a dataset folder (default KITTI 0926) with SGBM's disparities (nerv_sgm =
+// false) or nerv_sgm's; empty without the data.
+std::vector<Input> loadKitti(bool nerv_sgm, std::string dir = "") {
   std::vector<Input> in;
-  const std::string dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
+  if (dir.empty()) dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
   if (!std::filesystem::exists(dir)) return in;
   std::unique_ptr<stereo::StereoMatcher> m = stereo::StereoMatcher::create(stereo::Params{});
   for (const DatasetFrame& f : openDataset(dir).frames)
@@ -126,9 +129,31 @@ std::string timeInputs(const std::vector<Input>& inputs, int runs, const Params&
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 25;
+  int runs = 25;
+  std::string data;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--data" && i + 1 < argc) {
+      data = argv[++i];
+    } else if (!a.empty() && std::isdigit(static_cast<unsigned char>(a[0]))) {
+      runs = std::max(1, std::atoi(a.c_str()));
+    } else {
+      std::fprintf(stderr, "usage: bench_stixel [runs] [--data DIR]\n");
+      return 2;
+    }
+  }
   const Params params;
   size_t sink = 0;
+  if (!data.empty()) {  // one folder, nerv_sgm's disparities only
+    const std::vector<Input> inputs = loadKitti(true, data);
+    if (inputs.empty()) {
+      std::fprintf(stderr, "bench_stixel: no frames in %s\n", data.c_str());
+      return 2;
+    }
+    std::printf("disparity: nerv_sgm through the DISPARITY message, %s\n", data.c_str());
+    std::printf("%s\n", timeInputs(inputs, runs, params, sink).c_str());
+    return sink == 0 ? 0 : 0;
+  }
   const std::vector<Input> sgbm_inputs = loadKitti(false);
   if (sgbm_inputs.empty()) {
     std::printf("%s\n", timeInputs(loadSynthetic(), runs, params, sink).c_str());

@@ -61,14 +61,19 @@ float medianInRange(const cv::Mat& obstacle_map, int u0, int u1, int v0, int v1,
     }
   }
 #else
-  samples.clear();
+  // The same order, without a branch per pixel: every value is written to the next
+  // free slot, which advances by its test (NaN fails it).
+  const size_t most = static_cast<size_t>(std::max(0, v1 - v0 + 1)) * std::max(0, u1 - u0);
+  if (samples.size() < most) samples.resize(most);
+  out = samples.data();
   for (int v = v0; v <= v1; ++v) {
     const float* row = obstacle_map.ptr<float>(v);
-    for (int u = u0; u < u1; ++u)
-      if (row[u] >= lo && row[u] < hi) samples.push_back(row[u]);  // NaN fails
+    for (int u = u0; u < u1; ++u) {
+      const float x = row[u];
+      out[n] = x;
+      n += static_cast<size_t>((x >= lo) & (x < hi));
+    }
   }
-  out = samples.data();
-  n = samples.size();
 #endif
   if (n == 0) return 0.0f;
   std::nth_element(out, out + n / 2, out + n);
