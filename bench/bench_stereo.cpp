@@ -57,11 +57,13 @@ int main(int argc, char** argv) {
 
   struct Entry { std::string label; Params params; };
   std::vector<Entry> entries;
-  auto add = [&](const std::string& label, const std::string& algorithm, int downscale = 1, int snap = -1) {
+  auto add = [&](const std::string& label, const std::string& algorithm, int downscale = 1, int snap = -1,
+                 bool near_field = true) {
     Params p;
     p.algorithm = algorithm;
     p.downscale = downscale;
     p.boundary_snap_px = snap;
+    p.near_field = near_field;
     p.threads = threads;
     if (entries.empty() || only.empty() || only == algorithm) entries.push_back({label, p});
   };
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
   add("nerv_sgm", "nerv_sgm");
   add("nerv_sgm downscale 2", "nerv_sgm", 2);
   add("nerv_sgm no snap", "nerv_sgm", 1, 0);  // without the fattening correction (boundary_snap.hpp)
+  add("nerv_sgm no near field", "nerv_sgm", 1, -1, false);  // without the quarter-resolution match (near_field.hpp)
 
   // Runs are interleaved (one frame of every algorithm per round) so that load
   // from other processes on a shared computer hits all algorithms alike.
