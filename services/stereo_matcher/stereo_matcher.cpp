@@ -91,6 +91,7 @@ std::unique_ptr<StereoMatcher> createFullResolution(const Params& p) {
 class ReducedResolution : public StereoMatcher {
  public:
   explicit ReducedResolution(Params p) {
+    p.downscale = 1;  // the inner matcher's own checks see the halved range at its resolution
     p.num_disparities /= 2;
     p.min_disparity /= 2;
     p.speckle_window_size /= 4;

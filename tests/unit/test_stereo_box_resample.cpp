@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "box_resample.hpp"
+#include "stereo_matcher.hpp"
 
 using namespace nerv::stereo;
 
@@ -134,4 +135,39 @@ TEST(stereoBoxResample, WrongInputIsRefused) {
   EXPECT_THROW(boxMeanDownscale(cv::Mat(4, 4, CV_32FC1), 2, out), cv::Exception);
   EXPECT_THROW(boxMeanDownscale(cv::Mat(4, 4, CV_8UC1), 0, out), cv::Exception);
   EXPECT_THROW(blockNearestUpscale(cv::Mat(3, 3, CV_32FC1), 2, cv::Size(8, 8), out), cv::Exception);
+}
+
+TEST(stereoBoxResample, HalfResolutionMatchRepeatsEachValueOverItsBlock) {
+  // stereo_matcher.downscale 2 on views of odd size (KITTI's 375 rows): every full-
+  // resolution value and confidence is the one of its 2 x 2 block's top-left pixel, down to
+  // the last row and column, the layout the block mean made the half views in. (At this
+  // size OpenCV's nearest-neighbour resize, used before, gave the same layout; its area
+  // resize of the views did not, box_resample.hpp.) Also: 32 levels are
+  // accepted (16 at half resolution), which the inner matcher's own check once refused.
+  const int rows = 375, cols = 241, shift = 12;
+  cv::Mat wide(rows, cols + shift, CV_8UC1);
+  cv::RNG rng(9);
+  rng.fill(wide, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(wide, wide, cv::Size(0, 0), 1.0);
+  const cv::Mat left = wide(cv::Rect(0, 0, cols, rows)).clone(), right = wide(cv::Rect(shift, 0, cols, rows)).clone();
+  nerv::stereo::Params p;
+  p.num_disparities = 32;
+  p.downscale = 2;
+  cv::Mat disparity, confidence;
+  nerv::stereo::StereoMatcher::create(p)->compute(left, right, disparity, confidence);
+  ASSERT_EQ(disparity.size(), left.size());
+  ASSERT_EQ(confidence.size(), left.size());
+  int valid = 0;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x) {
+      const float d = disparity.at<float>(y, x);
+      EXPECT_EQ(std::memcmp(&d, &disparity.at<float>(y & ~1, x & ~1), sizeof d), 0) << y << " " << x;
+      EXPECT_EQ(confidence.at<float>(y, x), confidence.at<float>(y & ~1, x & ~1)) << y << " " << x;
+      valid += d > 0;
+    }
+  // and it matched: most of the view at the shift (x2 back to full resolution)
+  int right_value = 0;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 40; x < cols; ++x) right_value += std::abs(disparity.at<float>(y, x) - shift) <= 1.0f;
+  EXPECT_GT(right_value, 0.6 * rows * (cols - 40)) << valid << " valid";
 }
