@@ -50,6 +50,7 @@ std::optional<YAML::Node> ConfigSection::scalar(const std::string& key) {
 }
 
 void ConfigSection::get(const std::string& key, double& value, double lo, double hi) {
+  declared_[key] = {Declared::kNumber, lo, hi, {}};
   const std::optional<YAML::Node> found = scalar(key);
   if (!found) return;
   const YAML::Node& v = *found;
@@ -76,6 +77,7 @@ void ConfigSection::get(const std::string& key, float& value, double lo, double 
 }
 
 void ConfigSection::get(const std::string& key, int& value, int lo, int hi) {
+  declared_[key] = {Declared::kInteger, static_cast<double>(lo), static_cast<double>(hi), {}};
   const std::optional<YAML::Node> found = scalar(key);
   if (!found) return;
   const YAML::Node& v = *found;
@@ -96,6 +98,7 @@ void ConfigSection::get(const std::string& key, int& value, int lo, int hi) {
 }
 
 void ConfigSection::get(const std::string& key, bool& value) {
+  declared_[key] = {Declared::kBool, 0, 1, {}};
   const std::optional<YAML::Node> found = scalar(key);
   if (!found) return;
   const YAML::Node& v = *found;
@@ -109,6 +112,7 @@ void ConfigSection::get(const std::string& key, bool& value) {
 
 void ConfigSection::get(const std::string& key, std::string& value,
                         std::initializer_list<const char*> allowed) {
+  declared_[key] = {Declared::kText, 0, 0, std::vector<std::string>(allowed.begin(), allowed.end())};
   const std::optional<YAML::Node> found = scalar(key);
   if (!found) return;
   const YAML::Node& v = *found;

@@ -7,10 +7,12 @@
 
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace nerv {
 
@@ -48,12 +50,22 @@ class ConfigSection {
 
   const std::string& path() const { return path_; }
 
+  // Every key read so far with its kind and range, for tests that walk a section's keys
+  // (tests/unit/test_config_extremes.cpp): a value at either end of its range must run.
+  struct Declared {
+    enum Kind { kNumber, kInteger, kBool, kText } kind = kNumber;
+    double lo = 0, hi = 0;              // kNumber, kInteger
+    std::vector<std::string> allowed;   // kText (empty: any text)
+  };
+  const std::map<std::string, Declared>& declared() const { return declared_; }
+
  private:
   std::optional<YAML::Node> scalar(const std::string& key);
   std::string where(const std::string& key) const;
   YAML::Node node_;
   std::string path_;
   std::set<std::string> known_;
+  std::map<std::string, Declared> declared_;
 };
 
 }  // namespace nerv

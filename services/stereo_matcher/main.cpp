@@ -48,6 +48,14 @@ std::string nowUtc() {
 
 int serve(ServiceConfig& config) {
   const stereo::Params params = stereo::readParams(config.section());
+  // DISPARITY carries 1/256 px in 16 bits, at most 255.996 px: a search reaching further would
+  // publish every nearer surface at that value, a depth too far that no receiver could tell.
+  // (The in-process tools take longer searches; the wire does not.)
+  if (params.min_disparity + params.num_disparities > 256)
+    throw ConfigError("config key '" + config.section().path() + ".num_disparities' = " +
+                      std::to_string(params.num_disparities) + " with min_disparity " +
+                      std::to_string(params.min_disparity) +
+                      " searches beyond the 256 px a DISPARITY message carries (1/256 px in 16 bits)");
   std::string encoding = "u16le";
   config.section().get("output_encoding", encoding, {"u16le", "png16", "delta16"});
   int queue = 1;  // the newest frame waits; older ones are dropped (docs/stereo.md "Queue of one")

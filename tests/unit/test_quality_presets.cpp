@@ -213,3 +213,17 @@ TEST(qualityServiceKeys, TheWarmUpSizeIsBothOrNeither) {
   }
   if (checked == 0) GTEST_SKIP() << "services not built in " << bin;
 }
+
+TEST(qualityServiceKeys, TheMatcherSearchesNoFurtherThanTheWireCarries) {
+  // DISPARITY holds 1/256 px in 16 bits: a search beyond 256 px would publish nearer surfaces
+  // at 255.996 px, too far, silently. The service refuses it at start (the tools in-process
+  // may search further, with no wire between).
+  const fs::path service = binDir() / "stereo_matcher";
+  if (!fs::exists(service)) GTEST_SKIP() << "stereo_matcher not built in " << binDir();
+  EXPECT_EQ(checkConfig(service, "stereo_matcher: {num_disparities: 256}\n"), 0);
+  EXPECT_EQ(checkConfig(service, "stereo_matcher: {num_disparities: 224, min_disparity: 32}\n"), 0);
+  EXPECT_NE(checkConfig(service, "stereo_matcher: {num_disparities: 320}\n"), 0);
+  EXPECT_NE(checkConfig(service, "stereo_matcher: {num_disparities: 240, min_disparity: 32}\n"), 0);
+  ConfigSection c(YAML::Load("{num_disparities: 320}"), "stereo_matcher");
+  EXPECT_NO_THROW(stereo::readParams(c));  // in-process: allowed
+}
