@@ -4,7 +4,6 @@
 // publish at full size).
 #include "stereo_matcher.hpp"
 
-
 #include "boundary_snap.hpp"
 #include "box_resample.hpp"
 #include "gated_mean.hpp"
