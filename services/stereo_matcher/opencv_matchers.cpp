@@ -2,6 +2,10 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
 namespace nerv::stereo {
 
 void fixedToFloat(const cv::Mat& fixed16, int min_disparity, cv::Mat& disparity) {
@@ -56,6 +60,12 @@ class BmMatcher : public StereoMatcher {
   }
   void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity,
                cv::Mat& confidence) override {
+    // The config cannot know the frame: a window larger than it is said per frame with its key
+    // (OpenCV's own message names SADWindowSize).
+    if (params_.bm_block_size > std::min(left.rows, left.cols))
+      throw std::invalid_argument("config key 'stereo_matcher.bm_block_size' = " + std::to_string(params_.bm_block_size) +
+                                  " is larger than the " + std::to_string(left.cols) + "x" +
+                                  std::to_string(left.rows) + " frame");
     bm_->compute(left, right, fixed_);
     fixedToFloat(fixed_, params_.min_disparity, disparity);
     validityConfidence(disparity, confidence);

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <utility>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -72,6 +74,26 @@ std::vector<std::string> extremes(const ConfigSection::Declared& k) {
     case ConfigSection::Declared::kText: return k.allowed;
   }
   return {};
+}
+
+// A value drawn within the declared range (a bound at infinity taken as +-1e3).
+std::string randomValue(const ConfigSection::Declared& k, std::mt19937& rng) {
+  auto bound = [](double v) { return std::isfinite(v) ? v : (v > 0 ? 1e3 : -1e3); };
+  std::ostringstream s;
+  s.precision(9);
+  switch (k.kind) {
+    case ConfigSection::Declared::kNumber:
+      s << std::uniform_real_distribution<double>(bound(k.lo), bound(k.hi))(rng);
+      return s.str();
+    case ConfigSection::Declared::kInteger:
+      s << std::uniform_int_distribution<long long>(static_cast<long long>(bound(k.lo)),
+                                                    static_cast<long long>(bound(k.hi)))(rng);
+      return s.str();
+    case ConfigSection::Declared::kBool: return rng() % 2 ? "true" : "false";
+    case ConfigSection::Declared::kText:
+      return k.allowed.empty() ? std::string("x") : k.allowed[rng() % k.allowed.size()];
+  }
+  return "";
 }
 
 template <class Read>
@@ -150,6 +172,65 @@ void walkSection(const std::string& section, Read read, Set set, const std::vect
   }
 }
 
+// The matcher's frame: KITTI 0926's first pair halved (a fifth of the time; the near field
+// still runs), or a textured pair with a 9 px shift without the data.
+std::pair<cv::Mat, cv::Mat> matcherPair() {
+  cv::Mat left, right;
+  const std::string kitti = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
+  if (std::filesystem::is_directory(kitti)) {
+    const DatasetFrame f = openDataset(kitti).frames.at(0);
+    cv::resize(cv::imread(f.left_path, cv::IMREAD_GRAYSCALE), left, {}, 0.5, 0.5, cv::INTER_AREA);
+    cv::resize(cv::imread(f.right_path, cv::IMREAD_GRAYSCALE), right, {}, 0.5, 0.5, cv::INTER_AREA);
+  } else {
+    cv::Mat wide(188, 640, CV_8UC1);
+    cv::RNG(2).fill(wide, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(wide, wide, cv::Size(0, 0), 1.0);
+    left = wide(cv::Rect(0, 0, 621, 188)).clone();
+    right = wide(cv::Rect(9, 0, 621, 188)).clone();
+  }
+  return {left, right};
+}
+
+// One stereo_matcher config: refused at start naming a key of the section, or a map of the
+// frame's size, disparities finite and within the search (or the near field's 256 px),
+// confidences within 0..1.
+void checkMatcher(const YAML::Node& node, const std::string& what, const cv::Mat& left, const cv::Mat& right,
+                  int& runs, int& refused) {
+  ConfigSection c(node, "stereo_matcher");
+  stereo::Params p;
+  try {
+    p = stereo::readParams(c);
+    c.finish();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("config key 'stereo_matcher."), std::string::npos) << e.what();
+    ++refused;
+    return;
+  }
+  cv::Mat disparity, confidence;
+  try {
+    stereo::StereoMatcher::create(p)->compute(left, right, disparity, confidence);
+  } catch (const std::exception& e) {
+    // What only the frame can refuse (a window larger than it) is said naming its key; the
+    // service counts it as processing_failed and goes on with the next frame.
+    EXPECT_NE(std::string(e.what()).find("config key 'stereo_matcher."), std::string::npos) << what << " threw: " << e.what();
+    ++refused;
+    return;
+  }
+  ++runs;
+  ASSERT_EQ(disparity.size(), left.size()) << what;
+  ASSERT_EQ(confidence.size(), left.size()) << what;
+  const float reach = std::max(256.0f, static_cast<float>(p.min_disparity + p.num_disparities));
+  int bad_disparity = 0, bad_confidence = 0;
+  for (int y = 0; y < left.rows; ++y)
+    for (int x = 0; x < left.cols; ++x) {
+      const float d = disparity.at<float>(y, x), q = confidence.at<float>(y, x);
+      bad_disparity += !(std::isfinite(d) && d >= 0.0f && d <= reach);
+      bad_confidence += !(q >= 0.0f && q <= 1.0f);
+    }
+  EXPECT_EQ(bad_disparity, 0) << what;
+  EXPECT_EQ(bad_confidence, 0) << what;
+}
+
 }  // namespace
 
 TEST(configExtremes, EveryKeyAtEitherEndOfItsRangeRuns) {
@@ -167,61 +248,82 @@ TEST(configExtremes, EveryKeyAtEitherEndOfItsRangeRuns) {
 }
 
 TEST(configExtremes, TheMatcherAtEitherEndOfEveryKeyRuns) {
-  // The same for the stereo_matcher section: a map of the frame's size, disparities finite and
-  // within the search (or the near field's 256 px), confidences within 0..1. The frame: KITTI
-  // 0926's first pair halved (a fifth of the time; the near field still runs), or a textured
-  // pair with a 9 px shift without the data.
-  cv::Mat left, right;
-  const std::string kitti = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
-  if (std::filesystem::is_directory(kitti)) {
-    const DatasetFrame f = openDataset(kitti).frames.at(0);
-    cv::resize(cv::imread(f.left_path, cv::IMREAD_GRAYSCALE), left, {}, 0.5, 0.5, cv::INTER_AREA);
-    cv::resize(cv::imread(f.right_path, cv::IMREAD_GRAYSCALE), right, {}, 0.5, 0.5, cv::INTER_AREA);
-  } else {
-    cv::Mat wide(188, 640, CV_8UC1);
-    cv::RNG(2).fill(wide, cv::RNG::UNIFORM, 0, 256);
-    cv::GaussianBlur(wide, wide, cv::Size(0, 0), 1.0);
-    left = wide(cv::Rect(0, 0, 621, 188)).clone();
-    right = wide(cv::Rect(9, 0, 621, 188)).clone();
-  }
+  // The same for the stereo_matcher section (checkMatcher).
+  const auto [left, right] = matcherPair();
   const auto keys = keysOf("stereo_matcher", [](ConfigSection& c) { stereo::readParams(c); });
   int runs = 0, refused = 0;
   for (const auto& [key, declared] : keys)
     for (const std::string& value : extremes(declared)) {
       YAML::Node node(YAML::NodeType::Map);
       node[key] = value;
-      ConfigSection c(node, "stereo_matcher");
-      stereo::Params p;
-      try {
-        p = stereo::readParams(c);
-        c.finish();
-      } catch (const ConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find("config key 'stereo_matcher."), std::string::npos) << e.what();
-        ++refused;
-        continue;
-      }
-      const std::string what = "stereo_matcher." + key + " = " + value;
-      cv::Mat disparity, confidence;
-      try {
-        stereo::StereoMatcher::create(p)->compute(left, right, disparity, confidence);
-      } catch (const std::exception& e) {
-        ADD_FAILURE() << what << " threw: " << e.what();
-        continue;
-      }
-      ++runs;
-      ASSERT_EQ(disparity.size(), left.size()) << what;
-      ASSERT_EQ(confidence.size(), left.size()) << what;
-      const float reach = std::max(256.0f, static_cast<float>(p.min_disparity + p.num_disparities));
-      int bad_disparity = 0, bad_confidence = 0;
-      for (int y = 0; y < left.rows; ++y)
-        for (int x = 0; x < left.cols; ++x) {
-          const float d = disparity.at<float>(y, x), q = confidence.at<float>(y, x);
-          bad_disparity += !(std::isfinite(d) && d >= 0.0f && d <= reach);
-          bad_confidence += !(q >= 0.0f && q <= 1.0f);
-        }
-      EXPECT_EQ(bad_disparity, 0) << what;
-      EXPECT_EQ(bad_confidence, 0) << what;
+      checkMatcher(node, "stereo_matcher." + key + " = " + value, left, right, runs, refused);
     }
   EXPECT_GT(runs, 40);
   std::printf("configExtremes: the matcher ran %d settings, %d refused by a rule across keys\n", runs, refused);
+}
+
+TEST(configExtremes, RandomCombinationsOfKeysRun) {
+  // Keys interact (a tolerance against a height, a window against a range): 150 configs of
+  // six keys each, drawn at random within their ranges (fixed seed), for the three stages
+  // together; a config that a rule across keys refuses is counted, any other must run.
+  const std::vector<Frame> fr = frames();
+  const auto sx = keysOf("stixel", [](ConfigSection& c) { stixel::readParams(c); });
+  const auto sn = keysOf("snv_extrinsic", [](ConfigSection& c) { snv::readParams(c); });
+  const auto va = keysOf("validator", [](ConfigSection& c) { validator::readParams(c); });
+  std::mt19937 rng(20261207);
+  int runs = 0, refused = 0;
+  auto pick = [&](const std::map<std::string, ConfigSection::Declared>& keys, YAML::Node& node) {
+    auto it = keys.begin();
+    std::advance(it, static_cast<long>(rng() % keys.size()));
+    node[it->first] = randomValue(it->second, rng);
+  };
+  for (int i = 0; i < 150; ++i) {
+    YAML::Node a(YAML::NodeType::Map), b(YAML::NodeType::Map), c(YAML::NodeType::Map);
+    for (int j = 0; j < 2; ++j) pick(sx, a), pick(sn, b), pick(va, c);
+    std::ostringstream what;
+    what << "stixel " << YAML::Dump(a) << " | snv_extrinsic " << YAML::Dump(b) << " | validator " << YAML::Dump(c);
+    Params3 p;
+    try {
+      ConfigSection cs(a, "stixel"), cn(b, "snv_extrinsic"), cv(c, "validator");
+      p.stixel = stixel::readParams(cs);
+      p.snv = snv::readParams(cn);
+      p.validator = validator::readParams(cv);
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("must be below"), std::string::npos) << what.str() << ": " << e.what();
+      ++refused;
+      continue;
+    }
+    for (const Frame& f : fr) {
+      std::string problem;
+      try {
+        problem = runStages(f, p);
+      } catch (const std::exception& e) {
+        problem = std::string("threw: ") + e.what();
+      }
+      EXPECT_EQ(problem, "") << what.str() << " on " << f.name;
+      ++runs;
+    }
+  }
+  EXPECT_GT(runs, 100);
+  std::printf("configExtremes: %d runs of random combinations, %d refused by a rule across keys\n", runs, refused);
+}
+
+TEST(configExtremes, RandomCombinationsOfMatcherKeysRun) {
+  // 100 stereo_matcher configs of four keys each, drawn within their ranges (fixed seed); most
+  // are refused at start (sgm_p2 against the census window's bits, the window's size).
+  const auto [left, right] = matcherPair();
+  const auto keys = keysOf("stereo_matcher", [](ConfigSection& c) { stereo::readParams(c); });
+  std::mt19937 rng(7122026);
+  int runs = 0, refused = 0;
+  for (int i = 0; i < 100; ++i) {
+    YAML::Node node(YAML::NodeType::Map);
+    for (int j = 0; j < 4; ++j) {
+      auto it = keys.begin();
+      std::advance(it, static_cast<long>(rng() % keys.size()));
+      node[it->first] = randomValue(it->second, rng);
+    }
+    checkMatcher(node, "stereo_matcher " + YAML::Dump(node), left, right, runs, refused);
+  }
+  EXPECT_GT(runs, 15);
+  std::printf("configExtremes: the matcher ran %d random combinations, %d refused (at start, or by the frame naming the key)\n", runs, refused);
 }
