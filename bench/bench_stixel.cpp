@@ -63,7 +63,7 @@ cv::Mat nervSgm(stereo::StereoMatcher& m, const std::string& left, const std::st
 
 // The frames of a dataset folder (default KITTI 0926) with SGBM's disparities (nerv_sgm =
 // false) or nerv_sgm's; empty without the data.
-std::vector<Input> loadKitti(bool nerv_sgm, std::string dir = "") {
+std::vector<Input> loadFolder(bool nerv_sgm, std::string dir = "") {
   std::vector<Input> in;
   if (dir.empty()) dir = std::string(NERV_SHARED_DATA) + "/kitti_raw_0926_seq";
   if (!std::filesystem::exists(dir)) return in;
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
   const Params params;
   size_t sink = 0;
   if (!data.empty()) {  // one folder, nerv_sgm's disparities only
-    const std::vector<Input> inputs = loadKitti(true, data);
+    const std::vector<Input> inputs = loadFolder(true, data);
     if (inputs.empty()) {
       std::fprintf(stderr, "bench_stixel: no frames in %s\n", data.c_str());
       return 2;
@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
     std::printf("%s\n", timeInputs(inputs, runs, params, sink).c_str());
     return sink == 0 ? 0 : 0;
   }
-  const std::vector<Input> sgbm_inputs = loadKitti(false);
+  const std::vector<Input> sgbm_inputs = loadFolder(false);
   if (sgbm_inputs.empty()) {
     std::printf("%s\n", timeInputs(loadSynthetic(), runs, params, sink).c_str());
     return 0;
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
   std::printf("disparity: OpenCV SGBM (as in earlier rounds)\n");
   const std::string sgbm_line = timeInputs(sgbm_inputs, runs, params, sink);
   std::printf("%s\n\ndisparity: nerv_sgm through the DISPARITY message (the pipeline's default)\n", sgbm_line.c_str());
-  const std::string nerv_line = timeInputs(loadKitti(true), runs, params, sink);
+  const std::string nerv_line = timeInputs(loadFolder(true), runs, params, sink);
   std::printf("%s\n\nSGBM:     %s\nnerv_sgm: %s\n", nerv_line.c_str(), sgbm_line.c_str(), nerv_line.c_str());
   return sink == 0 ? 0 : 0;
 }

@@ -51,7 +51,7 @@ int serve(ServiceConfig& config) {
   // DISPARITY carries 1/256 px in 16 bits, at most 255.996 px: a search reaching further would
   // publish every nearer surface at that value, a depth too far that no receiver could tell.
   // (The in-process tools take longer searches; the wire does not.)
-  if (params.min_disparity + params.num_disparities > 256)
+  if (params.min_disparity + params.num_disparities > 65536.0f / kDisparityScale)
     throw ConfigError("config key '" + config.section().path() + ".num_disparities' = " +
                       std::to_string(params.num_disparities) + " with min_disparity " +
                       std::to_string(params.min_disparity) +
