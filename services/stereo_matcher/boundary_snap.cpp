@@ -94,6 +94,7 @@ int snapDisparityBoundaries(const cv::Mat& gray, cv::Mat& disparity, cv::Mat& co
   const bool has_conf = !confidence.empty();
   const int cols = disparity.cols;
   const int reach = p.band_px + 1;
+  const int thin_run = 3 * reach;
   const int hole_search = std::min(p.hole_search_px, cols);  // x + hole_search cannot overflow
   std::atomic<int> removed{0};
   // Rows are independent: bands of rows on OpenCV's thread pool, a few per
@@ -115,11 +116,28 @@ int snapDisparityBoundaries(const cv::Mat& gray, cv::Mat& disparity, cv::Mat& co
       // pixels inside x out to the last pixel before the background bg; the
       // pixels from there to bg are marked.
       auto snapBoundary = [&](int x, int step, int bg) {
+        // A thin run (a post of a few pixels, fattened on both sides) has both of its
+        // sides within the band, and the far one may be the stronger step: cut there,
+        // the whole post went. In a run shorter than thin_run pixels, from the pixel
+        // before its background to where the disparity leaves d[x] - jump inwards,
+        // the edge is looked for on this boundary's half only.
+        bool thin = false;
+        int mid2 = 0;  // twice the middle of a thin run
+        for (int k = 1, opp = x; k <= thin_run; ++k) {
+          const int i = x - k * step;
+          if (i < 0 || i >= cols || !(d[i] > d[x] - p.jump_px)) {
+            thin = true;
+            mid2 = bg - step + opp;
+            break;
+          }
+          opp = i;
+        }
         int best = x, best_step = 0;
         for (int e = bg - step; e != x - reach * step; e -= step) {
           if (e < 0 || e >= cols || e + step < 0 || e + step >= cols) break;
           // From x inwards the object must go on; ramp pixels beyond x may hold the edge.
           if ((e - x) * step <= 0 && !(d[e] > d[x] - p.jump_px)) break;
+          if (thin && (2 * e + step - mid2) * step < 0) break;  // past the middle of a thin run
           const int st = std::abs(int(g[e + step]) - int(g[e]));
           if (st > best_step) best_step = st, best = e;
         }

@@ -86,10 +86,19 @@ int snapRow(const cv::Mat& gray, cv::Mat& row, cv::Mat& conf, const BoundarySnap
       if (bg < 0) continue;
       // strongest intensity step between e and e + step, from band pixels
       // inside x (while the object goes on) to the pixel before the background
+      // a run shorter than 3 * reach pixels (from the pixel before the background to
+      // the last one inwards within jump of d(x)) is searched on this side's half only
+      int far_end = -1;
+      for (int k = 1; k <= 3 * reach && far_end < 0; ++k) {
+        const int i = x - k * step;
+        if (i < 0 || i >= cols || !(d(i) > d(x) - p.jump_px)) far_end = i + step;
+      }
       int best = x, best_step = 0;
       for (int e = bg - step; e != x - reach * step; e -= step) {
         if (e < 0 || e >= cols || e + step < 0 || e + step >= cols) break;
         if ((e - x) * step <= 0 && !(d(e) > d(x) - p.jump_px)) break;
+        // the edge between e and e + step lies beyond the middle of [bg - step, far_end]
+        if (far_end >= 0 && (e + 0.5 * step - 0.5 * (bg - step + far_end)) * step < 0) break;
         const int st = std::abs(int(gray.at<uchar>(0, e + step)) - int(gray.at<uchar>(0, e)));
         if (st > best_step) best_step = st, best = e;
       }
@@ -140,6 +149,28 @@ TEST(stereoBoundarySnap, CutsASmoothedStepDownToTheEdge) {
   for (int x : {6, 7, 8, 9}) EXPECT_EQ(r.d(x), 20.0f) << x;
   for (int x : {10, 11, 12}) EXPECT_EQ(r.d(x), 0.0f) << x;
   for (int x : {13, 14, 15}) EXPECT_EQ(r.d(x), 10.0f) << x;
+}
+
+TEST(stereoBoundarySnap, KeepsAThinPostWhoseFarSideIsTheStrongerStep) {
+  // A post at 20..23 (gray 120) between a bright background on its left (140: a step of
+  // 20) and a dimmer one on its right (128: a step of 8), fattened to 16..19 on the left and
+  // smoothed into a ramp over 24..27 on the right (urban seed 11 frame 3 row 208: a post of
+  // 4 px at 22 m). Both of its sides lie within the right boundary's band, and the left one
+  // is the stronger step: cut there, the right boundary took the post with it.
+  std::vector<int> g(34, 140);
+  std::vector<float> d(34, 10.0f);
+  for (int x = 20; x < 34; ++x) g[x] = x < 24 ? 120 : 128;
+  for (int x = 16; x < 24; ++x) d[x] = 18.0f;
+  const float ramp[] = {17.9f, 17.8f, 17.7f, 17.6f, 14.8f};
+  for (int i = 0; i < 5; ++i) d[24 + i] = ramp[i];
+  for (int x = 29; x < 34; ++x) d[x] = 14.6f;
+  Row r(g, d);
+  snapDisparityBoundaries(r.gray, r.disp, r.conf, band(4));
+  for (int x = 16; x < 20; ++x) EXPECT_EQ(r.d(x), 0.0f) << x;   // fattened on the left
+  for (int x = 20; x < 24; ++x) EXPECT_EQ(r.d(x), 18.0f) << x;  // the post
+  for (int x = 24; x < 28; ++x) EXPECT_EQ(r.d(x), 0.0f) << x;   // the ramp on its right
+  EXPECT_EQ(r.d(15), 10.0f);
+  EXPECT_EQ(r.d(28), 14.8f);
 }
 
 TEST(stereoBoundarySnap, LeavesASlantedSurfaceAlone) {
