@@ -78,6 +78,19 @@ pass "dpkg --dry-run -i accepts it on this system"
 
 # The CPU check: this computer passes; one with only the flags of an old CPU does not.
 sh "$tmp/control/preinst" install >"$tmp/preinst.log" 2>&1 || fail "preinst refused the computer the build was made on: $(cat "$tmp/preinst.log")"
+# Instruction sets this computer's kernel does not list although its CPU has them (a
+# paravirtualised guest): accepted on a CPU of the same vendor that lists the others, refused on
+# another vendor's.
+hidden=$(sed -n 's/^hidden="\(.*\)".*/\1/p' "$tmp/control/preinst")
+if [[ -n "$hidden" ]]; then
+  grep -q "^nerv: this computer's kernel does not list $hidden in /proc/cpuinfo, nor did the build computer's" "$tmp/preinst.log" \
+    || fail "preinst did not say which instruction sets it could not check: $(cat "$tmp/preinst.log")"
+  sed 's/^vendor_id.*/vendor_id\t: OtherVendor/' /proc/cpuinfo >"$tmp/other_vendor_cpuinfo"
+  NERV_CPUINFO="$tmp/other_vendor_cpuinfo" sh "$tmp/control/preinst" install >"$tmp/preinst_vendor.log" 2>&1 \
+    && fail "preinst accepted $hidden unlisted on another vendor's CPU"
+  grep -q "and this CPU lacks: $hidden;" "$tmp/preinst_vendor.log" || fail "preinst's refusal: $(cat "$tmp/preinst_vendor.log")"
+  pass "preinst: $hidden, which this computer's kernel does not list, accepted on this CPU, refused on another vendor's"
+fi
 printf 'processor\t: 0\nflags\t\t: fpu sse sse2 ssse3 sse4_1 sse4_2 popcnt\n' >"$tmp/old_cpuinfo"
 needs=$(field Description | sed -n 's/^ *Needs a CPU with: \(.*\)\.$/\1/p')
 if [[ -n "$needs" && "$needs" != "sse4_1 sse4_2 popcnt" ]]; then
@@ -94,4 +107,4 @@ fi
 run_installed_pipeline "$tmp/root/opt/nerv/bin" "$tmp/root/etc/nerv/pipeline.yaml" "$tmp"
 pass "the packaged nerv_up and services: $INSTALLED_RUN"
 no_survivors || fail "processes survived"
-echo "5 passed, 0 failed"
+echo "$((${hidden:+1} + 5)) passed, 0 failed"

@@ -89,6 +89,21 @@ if [[ -n "$march" ]]; then
   done < <("$cxx" -march="$march" -dM -E - </dev/null)
   mapfile -t required < <(printf '%s\n' "${required[@]}" | sort)
 fi
+# Instruction sets the compiler may use that this computer's kernel does not list in
+# /proc/cpuinfo although the CPU has them: a paravirtualised guest's kernel may mask CPUID bits
+# that user space still sees (a Zen 4 PVM guest lists neither abm nor sse4a, while CPUID has
+# both, GCC's -march=native uses both and lzcnt runs). No /proc/cpuinfo can show them on such a
+# kernel, so preinst accepts them missing on a CPU of the build computer's vendor that lists
+# every other instruction set the build uses (x86 builds made on x86 only).
+hidden=()
+vendor=""
+if [[ -z "$sysroot" && ${#required[@]} -gt 0 && -r /proc/cpuinfo ]] && grep -q '^vendor_id' /proc/cpuinfo; then
+  vendor=$(grep -m1 '^vendor_id' /proc/cpuinfo | cut -d: -f2 | tr -d ' \t')
+  build_flags=" $(grep -m1 '^flags' /proc/cpuinfo | cut -d: -f2) "
+  for f in "${required[@]}"; do
+    [[ "$build_flags" == *" $f "* ]] || hidden+=("$f")
+  done
+fi
 
 stage=$(mktemp -d)
 chmod 0755 "$stage"  # the package's ./ entry: mktemp's 0700 would be the installed /
@@ -170,14 +185,28 @@ cat >"$stage/DEBIAN/preinst" <<EOF
 #!/bin/sh
 set -e
 required="${required[*]}"
+hidden="${hidden[*]}"  # required, but not listed by the build computer's kernel either
+vendor="$vendor"
 cpuinfo="\${NERV_CPUINFO:-/proc/cpuinfo}"
 [ -n "\$required" ] || exit 0
 [ -r "\$cpuinfo" ] || { echo "nerv: \$cpuinfo is unreadable: cannot check that this CPU runs the build" >&2; exit 0; }
 flags=" \$(grep -m1 -E '^(flags|Features)' "\$cpuinfo" | cut -d: -f2) "  # x86, ARM
 missing=""
+unlisted=""
 for f in \$required; do
-  case "\$flags" in *" \$f "*) ;; *) missing="\$missing \$f" ;; esac
+  case "\$flags" in
+    *" \$f "*) ;;
+    *) case " \$hidden " in *" \$f "*) unlisted="\$unlisted \$f" ;; *) missing="\$missing \$f" ;; esac ;;
+  esac
 done
+if [ -z "\$missing" ] && [ -n "\$unlisted" ]; then
+  this_vendor=\$(grep -m1 '^vendor_id' "\$cpuinfo" | cut -d: -f2 | tr -d ' \t')
+  if [ "\$this_vendor" = "\$vendor" ]; then
+    echo "nerv: this computer's kernel does not list\$unlisted in \$cpuinfo, nor did the build computer's (\$vendor), whose CPU has them; accepted: it lists every other instruction set the build uses" >&2
+  else
+    missing="\$unlisted"
+  fi
+fi
 if [ -n "\$missing" ]; then
   echo "nerv: this package was built with -march=$march, and this CPU lacks:\$missing; its services would die of SIGILL. Build nerv on this computer, or package it with a -march this CPU has ($march_hint)" >&2
   exit 1
@@ -218,6 +247,10 @@ EOF
 chmod 0755 "$stage/DEBIAN/preinst" "$stage/DEBIAN/postinst" "$stage/DEBIAN/prerm" "$stage/DEBIAN/postrm"
 (cd "$stage" && find . -path ./DEBIAN -prune -o -type f -print | sed 's|^\./||' | sort | xargs md5sum) >"$stage/DEBIAN/md5sums"
 
+if (( ${#hidden[@]} > 0 )); then
+  echo "nerv package: this computer's kernel does not list ${hidden[*]} in /proc/cpuinfo, which the build may use" \
+       "(its CPUID has them): preinst accepts them unlisted on a $vendor CPU that lists every other one" >&2
+fi
 if [[ "$march" == native ]]; then
   echo "nerv package: built with -march=native: it installs only where the CPU has ${required[*]}" \
        "(preinst checks); for a fleet: tools/nerv package --march x86-64-v3" >&2
