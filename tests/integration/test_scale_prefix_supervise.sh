@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Scale, share, survive:
 #  - two stereo_matcher shards (run.shards in the pipeline YAML) cover every frame exactly once;
-#  - two pipelines with channel prefixes FRONT_ and REAR_ share one bus without interfering;
+#  - two pipelines with channel prefixes FRONT_ (--prefix) and REAR_ (the config's channel_prefix)
+#    share one bus without interfering;
 #  - after kill -9 of a service the supervisor restarts it and detections resume within 2 s.
 source "$(dirname "$0")/lib.sh"
 enter_private_bus "$@"
@@ -38,10 +39,13 @@ for svc in stixel snv_extrinsic validator; do
 done
 pass "no frame counted as dropped behind the shards ($swaps DISPARITY messages arrived out of order)"
 
-# 2. prefixes: two pipelines at once on one bus
+# 2. prefixes: two pipelines at once on one bus, one given its prefix by --prefix, the other
+# by its config's channel_prefix (which the run's source and evaluation follow as well)
+sed 's/^channel_prefix:.*/channel_prefix: "REAR_"/' "$NERV_ROOT/config/pipeline.yaml" >"$tmp/rear.yaml"
+grep -q '^channel_prefix: "REAR_"' "$tmp/rear.yaml" || fail "config/pipeline.yaml has no top-level channel_prefix line to set"
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 5 >"$tmp/front.txt" 2>&1 &
 front=$!
-"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/rear" --prefix REAR_ --rate 5 >"$tmp/rear.txt" 2>&1 || fail "REAR_ run: $(tail -3 "$tmp/rear.txt")"
+"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/rear" --config "$tmp/rear.yaml" --rate 5 >"$tmp/rear.txt" 2>&1 || fail "REAR_ run: $(tail -3 "$tmp/rear.txt")"
 wait $front || fail "FRONT_ run: $(tail -3 "$tmp/front.txt")"
 for p in FRONT_ REAR_; do
   log="$tmp/$(echo ${p%_} | tr A-Z a-z)/nerv.lcmlog"
@@ -55,7 +59,7 @@ for p in FRONT_ REAR_; do
   most=$(grep -o '"frames_in":[0-9]*' "$tmp/h.json" | cut -d: -f2 | sort -n | tail -n1)
   [[ -n "$most" && "$most" -ge 1 && "$most" -le 6 ]] || fail "$p validator saw other frames (at most $most counted): $(tail -n1 "$tmp/h.json")"
 done
-pass "FRONT_ and REAR_ pipelines ran side by side, each saw only its own 6 frames"
+pass "FRONT_ (--prefix) and REAR_ (the config's channel_prefix) pipelines ran side by side, each saw only its own 6 frames"
 
 # 3. supervisor: kill -9 a service mid-run
 "$NERV_ROOT/tools/nerv" run --data "$data" --repeat 10 --out "$tmp/kill" --rate 10 --timeout 5 >"$tmp/kill.txt" 2>&1 &
