@@ -74,6 +74,13 @@ Node::Node(NodeOptions options) : options_(std::move(options)), lcm_(resolveUrl(
   host_ = hostName();
   lcm_.subscribe(channel("NERV_HEALTH"), &Node::onHealth, this)->setQueueCapacity(50);
   std::fprintf(stderr, "%s: nerv %s\n", options_.service.c_str(), buildVersion());
+  // A shard sees every frame and takes one in shard_count: said at start, since a
+  // `shard.count` set without the other shards running (or run.shards) loses the rest quietly.
+  if (options_.shard_count > 1)
+    std::fprintf(stderr, "%s: shard %d of %d (instance %s): takes the frames whose seq %% %d is %d; the other %d "
+                 "shards must run for every frame to come out\n",
+                 options_.service.c_str(), options_.shard_index, options_.shard_count, options_.instance.c_str(),
+                 options_.shard_count, options_.shard_index, options_.shard_count - 1);
   struct sigaction sa {};
   sa.sa_handler = onSignal;
   sigaction(SIGINT, &sa, nullptr);
