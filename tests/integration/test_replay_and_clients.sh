@@ -13,12 +13,26 @@ trap 'stop_children; rm -rf "$tmp"' EXIT
 
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/live" --rate 10 >/dev/null 2>&1 || fail "live run"
 "$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r1" --speed 0.5 2>/dev/null || fail "replay 1"
-"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r2" --speed 0.5 2>/dev/null || fail "replay 2"
+# The second replay with a config whose channel_prefix is not the log's: the stages take the
+# log's (none here), say so, and give the same output.
+sed 's/^channel_prefix:.*/channel_prefix: "X_"/' "$NERV_ROOT/config/pipeline.yaml" >"$tmp/x.yaml"
+"$NERV_ROOT/tools/nerv" replay "$tmp/live/nerv.lcmlog" --out "$tmp/r2" --speed 0.5 --config "$tmp/x.yaml" 2>"$tmp/r2.txt" \
+  || fail "replay 2 (config prefix X_): $(tail -2 "$tmp/r2.txt")"
+grep -q "the stages run with ''" "$tmp/r2.txt" || fail "replay 2 did not say the prefix it ran with: $(cat "$tmp/r2.txt")"
 no_survivors || fail "processes survived a replay"
 ch=STIXELS,EXTRINSICS,SURFACE_NORMALS,DETECTIONS
 "$BIN/nerv_diff" "$tmp/r1/nerv.lcmlog" "$tmp/r2/nerv.lcmlog" --channels $ch || fail "two replays differ"
 "$BIN/nerv_diff" "$tmp/live/nerv.lcmlog" "$tmp/r1/nerv.lcmlog" --channels $ch || fail "replay differs from the live run"
-pass "replays are deterministic and equal the live run"
+pass "replays are deterministic and equal the live run (the second with a config of another channel_prefix)"
+
+# A drive recorded under a channel prefix replays under it, with the default config.
+"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 10 >/dev/null 2>&1 || fail "FRONT_ live run"
+"$NERV_ROOT/tools/nerv" replay "$tmp/front/nerv.lcmlog" --out "$tmp/r3" --speed 0.5 2>"$tmp/r3.txt" \
+  || fail "replay of the FRONT_ drive: $(tail -2 "$tmp/r3.txt")"
+n=$("$BIN/nerv_export" "$tmp/r3/nerv.lcmlog" --json --no-blobs | grep -c '"channel":"FRONT_DETECTIONS"' || true)
+[[ "$n" -eq 6 ]] || fail "replay of the FRONT_ drive: $n FRONT_DETECTIONS, expected 6"
+no_survivors || fail "processes survived a replay"
+pass "a drive recorded under FRONT_ replayed under it: 6 FRONT_DETECTIONS"
 
 # nothing lost by the logger: every frame and every stage output of the live run is in its log
 for c in STEREO_FRAME DISPARITY STIXELS SURFACE_NORMALS EXTRINSICS DETECTIONS; do

@@ -86,6 +86,7 @@ struct Child {
 
 struct Options {
   std::string config, lcm_url, prefix, bin_dir, services;
+  bool has_prefix = false;  // --prefix given, possibly empty: it replaces the config's channel_prefix
   bool status_only = false, quiet = false, list_only = false;
   double listen_s = 2.0, exit_when_idle_s = 0;
 };
@@ -350,7 +351,7 @@ int up(const Options& flags) {
   root.get("lcm_url", config_url);
   root.get("channel_prefix", config_prefix);
   if (o.lcm_url.empty()) o.lcm_url = config_url;
-  if (o.prefix.empty()) o.prefix = config_prefix;
+  if (!o.has_prefix) o.prefix = config_prefix;
   allowPipelineTopLevelKeys(root);  // what the services and the source read
   ConfigSection run = root.section("run");
   std::string services_csv = "stereo_matcher,stixel,snv_extrinsic,validator";
@@ -385,7 +386,7 @@ int up(const Options& flags) {
       c.instance = shard_count[s] > 1 ? "shard" + std::to_string(k) : "0";
       c.argv = {o.bin_dir + "/" + s, "--config", o.config};
       if (!o.lcm_url.empty()) c.argv.insert(c.argv.end(), {"--lcm-url", o.lcm_url});
-      if (!o.prefix.empty()) c.argv.insert(c.argv.end(), {"--prefix", o.prefix});
+      if (o.has_prefix || !o.prefix.empty()) c.argv.insert(c.argv.end(), {"--prefix", o.prefix});
       if (shard_count[s] > 1) c.argv.insert(c.argv.end(), {"--shard", std::to_string(k) + "/" + std::to_string(shard_count[s])});
       if (!std::filesystem::exists(c.argv[0])) throw std::runtime_error("service binary " + c.argv[0] + " is missing");
       c.watchdog = ServiceWatchdog(watchdog);
@@ -558,7 +559,7 @@ int main(int argc, char** argv) {
       };
       if (a == "--config") o.config = value();
       else if (a == "--lcm-url") o.lcm_url = value();
-      else if (a == "--prefix") o.prefix = value();
+      else if (a == "--prefix") o.prefix = value(), o.has_prefix = true;
       else if (a == "--services") o.services = value();
       else if (a == "--status") o.status_only = true;
       else if (a == "--listen") o.listen_s = std::stod(value());
