@@ -25,14 +25,35 @@ ch=STIXELS,EXTRINSICS,SURFACE_NORMALS,DETECTIONS
 "$BIN/nerv_diff" "$tmp/live/nerv.lcmlog" "$tmp/r1/nerv.lcmlog" --channels $ch || fail "replay differs from the live run"
 pass "replays are deterministic and equal the live run (the second with a config of another channel_prefix)"
 
-# A drive recorded under a channel prefix replays under it, with the default config.
-"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 10 >/dev/null 2>&1 || fail "FRONT_ live run"
-"$NERV_ROOT/tools/nerv" replay "$tmp/front/nerv.lcmlog" --out "$tmp/r3" --speed 0.5 2>"$tmp/r3.txt" \
-  || fail "replay of the FRONT_ drive: $(tail -2 "$tmp/r3.txt")"
-n=$("$BIN/nerv_export" "$tmp/r3/nerv.lcmlog" --json --no-blobs | grep -c '"channel":"FRONT_DETECTIONS"' || true)
-[[ "$n" -eq 6 ]] || fail "replay of the FRONT_ drive: $n FRONT_DETECTIONS, expected 6"
+# A drive recorded under a channel prefix replays under it, with the default config. Two cameras
+# on one bus (FRONT_ and REAR_ pipelines side by side): each run's logger records both, its
+# summary reads its own; a replay of that log runs stages for each camera.
+"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/rear" --prefix REAR_ --rate 10 >"$tmp/rear.txt" 2>&1 &
+rear=$!
+"$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 10 >"$tmp/front.txt" 2>&1 || fail "FRONT_ live run: $(tail -3 "$tmp/front.txt")"
+wait $rear || fail "REAR_ live run: $(tail -3 "$tmp/rear.txt")"
+for p in FRONT_ REAR_; do
+  s="$tmp/$(echo ${p%_} | tr A-Z a-z)/summary.json"
+  grep -q "\"prefix\":\"$p\"" "$s" || fail "the $p run's summary is not of $p: $(head -c 300 "$s")"
+  grep -q '"frames_in":6,"frames_out":6,' "$s" || fail "the $p run's summary does not count its 6 frames: $(head -c 300 "$s")"
+done
+both="$tmp/front/nerv.lcmlog"
+n=$("$BIN/nerv_export" "$both" --json --no-blobs | grep -c '"channel":"REAR_DETECTIONS"' || true)
+[[ "$n" -ge 1 ]] || fail "the FRONT_ run's log holds no REAR_DETECTIONS: the two runs did not overlap"
+line=$("$BIN/nerv_export" "$both" --summary - | head -n1)
+[[ "$line" == "this log holds 2 pipelines, by channel prefix: "*"'FRONT_'"*"'REAR_'"*"; choose one with --prefix P" ||
+   "$line" == "this log holds 2 pipelines, by channel prefix: "*"'REAR_'"*"'FRONT_'"*"; choose one with --prefix P" ]] \
+  || fail "the summary of a two-camera log does not say so: $line"
+"$NERV_ROOT/tools/nerv" replay "$both" --out "$tmp/r3" --speed 0.5 2>"$tmp/r3.txt" \
+  || fail "replay of the two-camera drive: $(tail -2 "$tmp/r3.txt")"
+grep -q "the log holds 2 pipelines" "$tmp/r3.txt" || fail "the replay did not say it ran two pipelines: $(cat "$tmp/r3.txt")"
+for p in FRONT_ REAR_; do
+  n=$("$BIN/nerv_export" "$tmp/r3/nerv.lcmlog" --json --no-blobs | grep -c "\"channel\":\"${p}DETECTIONS\"" || true)
+  [[ "$n" -eq 6 ]] || fail "replay of the two-camera drive: $n ${p}DETECTIONS, expected 6"
+  grep -q '"frames_in":6,"frames_out":6,' "$tmp/r3/summary.$p.json" || fail "replay's $p summary: $(head -c 300 "$tmp/r3/summary.$p.json")"
+done
 no_survivors || fail "processes survived a replay"
-pass "a drive recorded under FRONT_ replayed under it: 6 FRONT_DETECTIONS"
+pass "a drive of two cameras (FRONT_, REAR_ on one bus) replayed with stages for each: 6 DETECTIONS of each; each run's summary counted its own 6 frames"
 
 # nothing lost by the logger: every frame and every stage output of the live run is in its log
 for c in STEREO_FRAME DISPARITY STIXELS SURFACE_NORMALS EXTRINSICS DETECTIONS; do

@@ -41,8 +41,12 @@ pass "no frame counted as dropped behind the shards ($swaps DISPARITY messages a
 
 # 2. prefixes: two pipelines at once on one bus, one given its prefix by --prefix, the other
 # by its config's channel_prefix (which the run's source and evaluation follow as well)
-sed 's/^channel_prefix:.*/channel_prefix: "REAR_"/' "$NERV_ROOT/config/pipeline.yaml" >"$tmp/rear.yaml"
-grep -q '^channel_prefix: "REAR_"' "$tmp/rear.yaml" || fail "config/pipeline.yaml has no top-level channel_prefix line to set"
+# (single quotes and comments, as YAML allows: the run reads the config as the services do)
+sed -e "s/^channel_prefix:.*/channel_prefix: 'REAR_'   # the rear camera/" \
+    -e "s|^lcm_url:.*|lcm_url: 'udpm://239.255.76.67:7667?ttl=0\&recv_buf_size=4194304'   # the default, quoted|" \
+    "$NERV_ROOT/config/pipeline.yaml" >"$tmp/rear.yaml"
+grep -q "^channel_prefix: 'REAR_'" "$tmp/rear.yaml" || fail "config/pipeline.yaml has no top-level channel_prefix line to set"
+grep -q "^lcm_url: 'udpm" "$tmp/rear.yaml" || fail "config/pipeline.yaml has no top-level lcm_url line to set"
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/front" --prefix FRONT_ --rate 5 >"$tmp/front.txt" 2>&1 &
 front=$!
 "$NERV_ROOT/tools/nerv" run --data "$data" --out "$tmp/rear" --config "$tmp/rear.yaml" --rate 5 >"$tmp/rear.txt" 2>&1 || fail "REAR_ run: $(tail -3 "$tmp/rear.txt")"

@@ -3,7 +3,11 @@
 //   nerv_eval_detections --log LOG --labels DIR [--max-distance M] [--classes Car,Pole]
 //                        [--min-iou 0.5] [--visible] [--difficulty easy|moderate|hard]
 //                        [--count-far-detections] [--extrinsics FILE] [--from-seq N] [--json]
+//                        [--prefix P]
 //
+// A log of several pipelines (one per camera, each under its channel prefix) is scored for one:
+// the pipeline of --prefix P, else the first in the log, saying so on stderr (the labels are
+// one camera's).
 // "stixel only" scores every hypothesis of DETECTIONS, "stixel + SNV" only the
 // kept ones. Labels are DIR/<frame>.txt where <frame> ends the frame_id.
 // --visible ignores largely hidden objects (occluded 2) and those half outside
@@ -33,6 +37,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -42,6 +47,7 @@
 #include "miss_causes.hpp"
 #include "frame_name.hpp"
 #include "percentile.hpp"
+#include "pipeline_prefix.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -57,6 +63,7 @@ struct Options {
   EvalParams params;
   bool json = false;
   int64_t from_seq = 0;
+  std::optional<std::string> prefix;
 };
 
 Options parse(int argc, char** argv) {
@@ -74,6 +81,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--min-iou") o.params.min_iou = std::stof(value());
     else if (a == "--json") o.json = true;
     else if (a == "--from-seq") o.from_seq = std::stoll(value());
+    else if (a == "--prefix") o.prefix = value();
     else if (a == "--visible") o.params.visible_only = true;
     else if (a == "--difficulty") {
       if (const std::string why = setKittiDifficulty(value(), o.params); !why.empty()) throw std::runtime_error(why);
@@ -137,7 +145,9 @@ int main(int argc, char** argv) {
     std::map<std::string, std::vector<double>> stage_ms;
     std::vector<double> pitch_err, roll_err, height_err;
     std::map<int64_t, bool> seen;
+    PipelineSelection pipeline(o.prefix);
     while (const lcm::LogEvent* e = log.readNextEvent()) {
+      if (!pipeline.take(e->channel)) continue;  // another camera's pipeline: its seqs are its own
       detections_t det;
       disparity_t disp;
       stixels_t stix;
@@ -171,6 +181,8 @@ int main(int argc, char** argv) {
         }
       }
     }
+    if (const std::string note = pipeline.note(); !note.empty())
+      std::fprintf(stderr, "nerv_eval_detections: %s\n", note.c_str());
     if (frames == 0) throw std::runtime_error("no DETECTIONS with labels in " + o.log);
     auto mean = [](const std::vector<double>& v) {
       double s = 0;
@@ -182,6 +194,7 @@ int main(int argc, char** argv) {
       JsonWriter j;
       j.beginObject();
       j.field("frames", frames);
+      j.field("prefix", pipeline.selected());
       j.field("frames_without_labels", unlabelled);
       j.field("visible_only", o.params.visible_only);
       j.field("difficulty", o.params.difficulty);

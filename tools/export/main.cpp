@@ -2,7 +2,10 @@
 //
 //   nerv_export LOG --json [--no-blobs]     one JSON object per event on stdout
 //   nerv_export LOG --disparity-png DIR     each DISPARITY as KITTI 16-bit PNG (d*256, 0 invalid)
-//   nerv_export LOG --summary FILE          run summary as JSON (and as text on stdout)
+//   nerv_export LOG --summary FILE [--prefix P]
+//                                           run summary as JSON (and as text on stdout); of a log
+//                                           of several pipelines (a channel prefix per camera)
+//                                           the one of prefix P, else the first in the log
 //   nerv_export --live --json [--no-blobs] [--lcm-url URL] [--channels REGEX] [--count N] [--seconds S]
 //                                           the same JSON lines from live traffic on the bus
 #include <lcm/lcm-cpp.hpp>
@@ -13,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 #include "frame_name.hpp"
@@ -129,9 +133,9 @@ int exportDisparity(const std::string& path, const std::string& dir) {
   return written > 0 ? 0 : 1;
 }
 
-int summary(const std::string& path, const std::string& out) {
+int summary(const std::string& path, const std::string& out, const std::optional<std::string>& prefix) {
   std::string text;
-  const std::string json = summarizeLog(path, &text);
+  const std::string json = summarizeLog(path, &text, prefix);
   if (!out.empty() && out != "-") {
     FILE* f = std::fopen(out.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + out);
@@ -153,7 +157,12 @@ int main(int argc, char** argv) {
     if (!std::filesystem::exists(log)) throw std::runtime_error("log " + log + " does not exist");
     if (mode == "--json") return exportJson(log, !(argc > 3 && std::string(argv[3]) == "--no-blobs"));
     if (mode == "--disparity-png" && argc > 3) return exportDisparity(log, argv[3]);
-    if (mode == "--summary") return summary(log, argc > 3 ? argv[3] : "");
+    if (mode == "--summary") {
+      std::optional<std::string> prefix;
+      if (argc == 6 && std::string(argv[4]) == "--prefix") prefix = argv[5];
+      else if (argc > 4) throw std::runtime_error("usage: nerv_export LOG --summary FILE [--prefix P]");
+      return summary(log, argc > 3 ? argv[3] : "", prefix);
+    }
     throw std::runtime_error("unknown mode '" + mode + "'");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nerv_export: %s\n", e.what());

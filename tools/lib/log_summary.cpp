@@ -12,6 +12,7 @@
 #include "latency_breakdown.hpp"
 #include "log_decode.hpp"
 #include "percentile.hpp"
+#include "pipeline_prefix.hpp"
 #include "resource_trend.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
@@ -46,20 +47,23 @@ struct FrameRow {
 
 }  // namespace
 
-std::string summarizeLog(const std::string& log_path, std::string* text_report) {
+std::string summarizeLog(const std::string& log_path, std::string* text_report,
+                         const std::optional<std::string>& prefix) {
   lcm::LogFile log(log_path, "r");
   if (!log.good()) throw std::runtime_error("log " + log_path + " cannot be read");
   std::map<int64_t, FrameRow> frames;
   std::map<std::string, std::vector<double>> stage_ms;
-  std::map<std::string, health_t> last_health;
+  std::map<std::string, std::map<std::string, health_t>> health_by_prefix;  // prefix -> "service/instance" -> report
   std::vector<double> latencies;
   std::map<std::string, int64_t> events_per_channel;
   int64_t first_frame_utime = -1, last_detection_utime = -1, detections_events = 0;
   LatencyBreakdown breakdown;
-  ResourceTrend resources;
+  std::map<std::string, ResourceTrend> resources_by_prefix;
+  PipelineSelection pipeline(prefix);
 
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     ++events_per_channel[e->channel];
+    if (!pipeline.take(e->channel)) continue;  // another camera's pipeline: its seqs are its own
     stereo_frame_t frame;
     disparity_t disp;
     stixels_t stix;
@@ -110,11 +114,16 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
       last_detection_utime = std::max(last_detection_utime, e->timestamp);
       ++detections_events;
     } else if (decodeHealth(e->data, e->datalen, health)) {  // any layout: older logs too
-      last_health[health.service + "/" + health.instance] = health;
-      resources.add(health);
+      // (kept by prefix: which pipeline is read may be decided by a later frame event)
+      const std::string p = nervChannelPrefix(e->channel).value_or("");
+      health_by_prefix[p][health.service + "/" + health.instance] = health;
+      resources_by_prefix[p].add(health);
     }
   }
 
+  const std::string pipelines = pipeline.note();  // (throws when the prefix asked for is absent)
+  const std::map<std::string, health_t>& last_health = health_by_prefix[pipeline.selected()];
+  const ResourceTrend& resources = resources_by_prefix[pipeline.selected()];
   int frames_in = 0, frames_out = 0;
   std::vector<int64_t> missing;
   for (const auto& [seq, r] : frames) {
@@ -129,6 +138,11 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
   JsonWriter j(false);
   j.beginObject();
   j.field("log", log_path);
+  j.field("prefix", pipeline.selected());
+  j.key("prefixes");  // every pipeline in the log; the figures are of "prefix" only
+  j.beginArray();
+  for (const auto& p : pipeline.prefixes()) j.value(p);
+  j.endArray();
   j.field("frames_in", frames_in);
   j.field("frames_out", frames_out);
   j.key("frames_without_detections");
@@ -204,7 +218,7 @@ std::string summarizeLog(const std::string& log_path, std::string* text_report) 
 
   if (text_report) {
     char buf[512];
-    std::string t;
+    std::string t = pipelines.empty() ? "" : pipelines + "\n";
     std::snprintf(buf, sizeof buf, "frames: %d in, %d out (%zu without DETECTIONS), %.1f fps over %.2f s\n",
                   frames_in, frames_out, missing.size(), duration_s > 0 ? frames_out / duration_s : 0.0, duration_s);
     t += buf;

@@ -6,6 +6,10 @@
 //   nerv_up --config FILE [--services a,b] --list   the instances it would start, one
 //                                                   "service/instance" a line (what a
 //                                                   source waits for before its first frame)
+//   nerv_up --config FILE [--lcm-url URL] [--prefix P] --print lcm_url|channel_prefix
+//                                                   the bus or channel prefix the services
+//                                                   would use (flags, else the config, else the
+//                                                   default), after the whole config is checked
 //
 // The `run:` section of the config says which services to start and how many
 // shards of each (`shards: {stereo_matcher: 2}`). A service that exits is
@@ -88,6 +92,7 @@ struct Options {
   std::string config, lcm_url, prefix, bin_dir, services;
   bool has_prefix = false;  // --prefix given, possibly empty: it replaces the config's channel_prefix
   bool status_only = false, quiet = false, list_only = false;
+  std::string print_key;  // --print: lcm_url or channel_prefix, as the services would use them
   double listen_s = 2.0, exit_when_idle_s = 0;
 };
 
@@ -395,7 +400,7 @@ int up(const Options& flags) {
   }
   const std::string url = busUrl(o.lcm_url);
   std::unique_ptr<RecorderState> recorder;
-  if (record.enabled() && !o.list_only) {
+  if (record.enabled() && !o.list_only && o.print_key.empty()) {
     const std::string logger = findOnPath("lcm-logger");
     if (logger.empty()) throw ConfigError("run.record.folder is set, but lcm-logger is not on PATH (Debian package liblcm-bin)");
     const std::string problem = prepareRecordingFolder(record.folder);
@@ -412,6 +417,8 @@ int up(const Options& flags) {
     c.argv = loggerArgv(record, logger, url);
     children.push_back(c);
   }
+  if (o.print_key == "lcm_url") return std::printf("%s\n", url.c_str()), 0;
+  if (o.print_key == "channel_prefix") return std::printf("%s\n", o.prefix.c_str()), 0;
   if (o.list_only) {
     for (const auto& c : children) std::printf("%s/%s\n", c.service.c_str(), c.instance.c_str());
     return 0;
@@ -565,6 +572,11 @@ int main(int argc, char** argv) {
       else if (a == "--listen") o.listen_s = std::stod(value());
       else if (a == "--quiet") o.quiet = true;
       else if (a == "--list") o.list_only = true;
+      else if (a == "--print") {
+        o.print_key = value();
+        if (o.print_key != "lcm_url" && o.print_key != "channel_prefix")
+          throw std::runtime_error("--print takes lcm_url or channel_prefix, not '" + o.print_key + "'");
+      }
       else if (a == "--version") return std::printf("nerv_up: nerv %s\n", buildVersion()), 0;
       else if (a == "--exit-when-idle") o.exit_when_idle_s = std::stod(value());
       else throw std::runtime_error("unknown flag '" + a + "'");
