@@ -2,7 +2,8 @@
 //
 //   nerv_diff LOG_A LOG_B [--channels STIXELS,EXTRINSICS,...] [--max-lines N]
 //
-// Messages are matched by channel and header.seq and compared field by field
+// Messages are matched by channel (its prefix included: a log of several cameras holds a pipeline
+// per prefix, whose seqs overlap) and header.seq and compared field by field
 // (as JSON) with timing fields (processing_ms) set aside. Health, frames and
 // other channels without a frame header are skipped by default. Exit 0 when
 // the compared channels are identical, 1 when they differ, 2 on error.
@@ -28,7 +29,7 @@ using namespace nerv;
 
 namespace {
 
-// channel suffix -> seq -> JSON of the message without timing fields
+// channel -> seq -> JSON of the message without timing fields
 using Run = std::map<std::string, std::map<int64_t, std::string>>;
 
 template <class T>
@@ -60,7 +61,7 @@ Run readRun(const std::string& path, const std::set<std::string>& channels) {
     const bool ok = canonical<detections_t>(*e, seq, json) || canonical<stixels_t>(*e, seq, json) ||
                     canonical<extrinsics_t>(*e, seq, json) || canonical<surface_normals_t>(*e, seq, json) ||
                     canonical<disparity_t>(*e, seq, json);
-    if (ok) run[base][seq] = json;
+    if (ok) run[e->channel][seq] = json;
   }
   return run;
 }
@@ -101,7 +102,18 @@ int main(int argc, char** argv) {
     const Run a = readRun(argv[1], channels), b = readRun(argv[2], channels);
     bool differ = false;
     int lines = 0;
-    for (const auto& ch : channels) {
+    // Each channel of either log (FRONT_STIXELS and REAR_STIXELS apart), and a compared channel
+    // neither holds as a line of zeros.
+    std::set<std::string> names;
+    for (const Run* r : {&a, &b})
+      for (const auto& [ch, m] : *r) names.insert(ch);
+    for (const auto& c : channels) {
+      bool held = false;
+      for (const auto& n : names)
+        held = held || (n.size() >= c.size() && n.compare(n.size() - c.size(), c.size(), c) == 0);
+      if (!held) names.insert(c);
+    }
+    for (const auto& ch : names) {
       const auto& ma = a.count(ch) ? a.at(ch) : std::map<int64_t, std::string>{};
       const auto& mb = b.count(ch) ? b.at(ch) : std::map<int64_t, std::string>{};
       int same = 0, changed = 0, only_a = 0, only_b = 0;

@@ -30,6 +30,7 @@ RenderResult renderLog(const std::string& log_path, const RenderOptions& options
   LogFrameOptions read;
   read.seq_min = options.seq_min;
   read.seq_max = options.seq_max;
+  read.prefix = options.prefix;
   LogFrameReader reader(log_path, read);
   RenderResult result;
   MjpegAviWriter video;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "frame_grid.hpp"
@@ -20,6 +21,7 @@ struct RenderOptions {
   double video_fps = 10;
   double scale = 1.0;           // output scale of the grid (1 = left image size per panel)
   NeedleParams needles;
+  std::optional<std::string> prefix;  // the pipeline (channel prefix) to draw; unset: the first in the log
 };
 
 struct RenderResult {

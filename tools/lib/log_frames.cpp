@@ -5,7 +5,7 @@
 namespace nerv {
 
 LogFrameReader::LogFrameReader(const std::string& path, const LogFrameOptions& options)
-    : options_(options) {
+    : options_(options), pipeline_(options.prefix) {
   log_ = std::make_unique<lcm::LogFile>(path, "r");
   if (!log_->good()) throw std::runtime_error("log " + path + " cannot be read");
 }
@@ -27,6 +27,10 @@ bool complete(const LogFrame& f) {
 
 void LogFrameReader::absorb(const lcm::LogEvent& e) {
   ++stats_.events;
+  if (!pipeline_.take(e.channel)) {  // another camera's frames: their seqs are their own
+    ++stats_.other_pipeline;
+    return;
+  }
   const int64_t fp = messageFingerprint(e.data, e.datalen);
   // Decodes into the frame's slot unless it is filled already. Returns false
   // when the fingerprint is not T's.
@@ -113,6 +117,7 @@ bool LogFrameReader::next(LogFrame& frame) {
     const lcm::LogEvent* e = log_->readNextEvent();
     if (!e) {
       eof_ = true;
+      stats_.pipelines = pipeline_.note();  // (throws when the prefix asked for is not in the log)
       break;
     }
     absorb(*e);

@@ -17,6 +17,7 @@
 #include <set>
 #include <string>
 
+#include "pipeline_prefix.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/disparity_t.hpp"
 #include "nerv/extrinsics_t.hpp"
@@ -48,6 +49,8 @@ struct LogReadStats {
   int64_t broken = 0;          // a known fingerprint that did not decode: skipped
   int64_t duplicates = 0;      // a second message of the same type and seq: skipped
   int64_t stereo_frames = 0;   // STEREO_FRAME messages seen (0: the log cannot be rendered)
+  int64_t other_pipeline = 0;  // frame messages of another camera's pipeline (channel prefix): skipped
+  std::string pipelines;       // at the end: one line when the log holds several (pipeline_prefix.hpp)
   std::map<std::string, int64_t> broken_per_channel;
 };
 
@@ -56,6 +59,7 @@ struct LogFrameOptions {
   int64_t seq_max = std::numeric_limits<int64_t>::max();
   std::set<int64_t> seqs;      // non-empty: only these frames
   bool keep_images = true;     // false: stereo and disparity pixels are dropped on read
+  std::optional<std::string> prefix;  // the pipeline (channel prefix) to read; unset: the first in the log
   int max_pending = 16;        // incomplete frames held before the oldest is handed out
 };
 
@@ -76,6 +80,7 @@ class LogFrameReader {
   LogFrameOptions options_;
   LogReadStats stats_;
   std::map<int64_t, LogFrame> pending_;
+  PipelineSelection pipeline_;
   std::set<int64_t> handed_out_;        // seqs already returned (late messages are duplicates)
   bool eof_ = false;
 };

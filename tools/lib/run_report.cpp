@@ -147,6 +147,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
     LogFrameOptions read;
     read.keep_images = false;
     read.max_pending = 64;
+    read.prefix = options.prefix;
     LogFrameReader reader(log_path, read);
     LogFrame f;
     while (reader.next(f)) {
@@ -238,6 +239,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
   std::string hist_problem;
   {
     LogFrameOptions read;
+    read.prefix = options.prefix;
     if (hist_seq >= 0) read.seqs.insert(hist_seq);
     for (const Row* r : worst) read.seqs.insert(r->seq);
     if (!read.seqs.empty()) {
@@ -315,7 +317,7 @@ ReportResult writeRunReport(const std::string& log_path, const ReportOptions& op
                 {"duplicate messages skipped", std::to_string(result.log.duplicates)}});
     std::string text;
     try {
-      summarizeLog(log_path, &text);
+      summarizeLog(log_path, &text, options.prefix);
       page.paragraph("The run summary of tools/lib/log_summary (as `nerv export --summary`), with the last health "
                      "report of every service (frames dropped, errors):");
       page.pre(text);

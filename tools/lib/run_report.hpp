@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "detection_eval.hpp"
@@ -20,6 +21,7 @@ struct ReportOptions {
   int64_t histogram_seq = -1;   // frame of the pitch histogram; -1: the middle frame with a valid pose
   int worst_frames = 3;         // rendered frames with the most errors (labels only)
   EvalParams eval;
+  std::optional<std::string> prefix;  // the pipeline (channel prefix) to report; unset: the first in the log
 };
 
 struct ReportResult {

@@ -1,7 +1,7 @@
 // nerv_render: what nerv saw, frame by frame, from a log alone.
 //
 //   nerv_render LOG --out DIR [--frames A:B] [--video] [--fps F] [--labels DIR]
-//               [--scale S] [--needle-interval PX]
+//               [--scale S] [--needle-interval PX] [--prefix P]   (P: the camera pipeline of a log of several)
 //
 // Writes DIR/NNNNNN.png (NNNNNN = seq) per frame: a labelled grid of the left
 // image with detections (and ground truth), the disparity with the ground
@@ -24,7 +24,7 @@ namespace {
 void usage() {
   std::fprintf(stderr,
                "usage: nerv_render LOG --out DIR [--frames A:B] [--video] [--fps F] [--labels DIR] [--scale S]\n"
-               "                   [--needle-interval PX]\n");
+               "                   [--needle-interval PX] [--prefix P]\n");
 }
 
 // "A:B", "A:" or ":B" (inclusive seq range).
@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
       else if (a == "--fps") o.video_fps = std::stod(value());
       else if (a == "--labels") o.labels_dir = value();
       else if (a == "--scale") o.scale = std::stod(value());
+      else if (a == "--prefix") o.prefix = value();
       else if (a == "--needle-interval") o.needles.interval_px = std::stoi(value());
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown flag '" + a + "'");
@@ -74,6 +75,7 @@ int main(int argc, char** argv) {
   }
   try {
     const viz::RenderResult r = viz::renderLog(log_path, o);
+    if (!r.log.pipelines.empty()) std::fprintf(stderr, "nerv_render: %s\n", r.log.pipelines.c_str());
     if (r.log.stereo_frames == 0) {
       std::fprintf(stderr, "nerv_render: %s has no STEREO_FRAME messages (%lld events): nothing to render\n",
                    log_path.c_str(), static_cast<long long>(r.log.events));

@@ -1,7 +1,7 @@
 // nerv_report: one self-contained HTML page about a recorded run.
 //
 //   nerv_report LOG --out DIR [--labels DIR] [--extrinsics FILE] [--frame SEQ]
-//               [--worst N] [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections]
+//               [--worst N] [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections] [--prefix P]
 //
 // Writes DIR/report.html: run summary, pose over time, detections per frame, a
 // frame's pitch histogram with the mode / mean / mean-shift of EXTRINSICS,
@@ -22,7 +22,8 @@ namespace {
 void usage() {
   std::fprintf(stderr,
                "usage: nerv_report LOG --out DIR [--labels DIR] [--extrinsics FILE] [--frame SEQ] [--worst N]\n"
-               "                   [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections]\n");
+               "                   [--max-distance M] [--min-iou X] [--visible] [--difficulty easy|moderate|hard] [--count-far-detections]\n"
+               "                   [--prefix P]\n");
 }
 
 }  // namespace
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
         if (const std::string why = setKittiDifficulty(value(), o.eval); !why.empty()) throw std::runtime_error(why);
       }
       else if (a == "--count-far-detections") o.eval.limit_detections = false;
+      else if (a == "--prefix") o.prefix = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown flag '" + a + "'");
       else if (log_path.empty()) log_path = a;
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   try {
     const viz::ReportResult r = viz::writeRunReport(log_path, o);
     if (!r.note.empty()) std::fprintf(stderr, "nerv_report: %s\n", r.note.c_str());
+    if (!r.log.pipelines.empty()) std::fprintf(stderr, "nerv_report: %s\n", r.log.pipelines.c_str());
     std::printf("nerv_report: %s (%d frames, %d plots, %d images; %lld broken messages skipped)\n", r.html_path.c_str(),
                 r.frames, r.plots, r.images, static_cast<long long>(r.log.broken));
     return 0;
