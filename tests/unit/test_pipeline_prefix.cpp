@@ -1,5 +1,6 @@
 // Logs of several pipelines (a channel prefix per camera): which events the log tools read.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <lcm/lcm-cpp.hpp>
 
 #include <filesystem>
@@ -99,7 +100,8 @@ void writePipeline(lcm::LogFile& log, const std::string& prefix, int frames, int
 // Two cameras whose seqs overlap: the front answered all 5 frames, the rear 2 of 5. Merged by
 // seq (before 2026-12-07) the summary said "5 in, 5 out" and hid the rear's 3 lost frames.
 TEST(pipelinePrefix, TheSummaryReadsOnePipelineOfATwoCameraLog) {
-  const std::string path = (std::filesystem::temp_directory_path() / "nerv_two_cameras.lcmlog").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("nerv_two_cameras_" + std::to_string(getpid()) + ".lcmlog")).string();
   {
     lcm::LogFile log(path, "w");
     ASSERT_TRUE(log.good());
