@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lcm_test_log.hpp"
 #include "log_summary.hpp"
 #include "nerv/detections_t.hpp"
 #include "nerv/health_t.hpp"
@@ -15,6 +16,7 @@
 #include "pipeline_prefix.hpp"
 
 using namespace nerv;
+using nerv::test::appendLcmEvent;
 
 TEST(pipelinePrefix, ChannelPrefixes) {
   EXPECT_EQ(nervChannelPrefix("FRONT_DISPARITY"), "FRONT_");
@@ -57,23 +59,6 @@ TEST(pipelinePrefix, TheFirstFrameChannelDecidesUnlessOneIsAskedFor) {
 
 namespace {
 
-void writeEvent(lcm::LogFile& log, const std::string& channel, int64_t t, const std::vector<uint8_t>& data) {
-  lcm::LogEvent e;
-  e.eventnum = 0;
-  e.timestamp = t;
-  e.channel = channel;
-  e.datalen = static_cast<int32_t>(data.size());
-  e.data = const_cast<uint8_t*>(data.data());
-  ASSERT_EQ(log.writeEvent(&e), 0);
-}
-
-template <typename T>
-std::vector<uint8_t> encoded(const T& msg) {
-  std::vector<uint8_t> data(static_cast<size_t>(msg.getEncodedSize()));
-  msg.encode(data.data(), 0, static_cast<int>(data.size()));
-  return data;
-}
-
 // A camera's pipeline: `frames` STEREO_FRAME, DETECTIONS for the first `answered`, one health report.
 void writePipeline(lcm::LogFile& log, const std::string& prefix, int frames, int answered, int64_t t0) {
   for (int s = 0; s < frames; ++s) {
@@ -81,18 +66,18 @@ void writePipeline(lcm::LogFile& log, const std::string& prefix, int frames, int
     f.header.seq = s;
     f.header.utime = t0 + s * 100000;
     f.header.frame_id = prefix + "frame" + std::to_string(s);
-    writeEvent(log, prefix + "STEREO_FRAME", f.header.utime + 1000, encoded(f));
+    appendLcmEvent(log, prefix + "STEREO_FRAME", f, f.header.utime + 1000);
     if (s >= answered) continue;
     detections_t d{};
     d.header = f.header;
     d.num_kept = 0;
-    writeEvent(log, prefix + "DETECTIONS", f.header.utime + 30000, encoded(d));
+    appendLcmEvent(log, prefix + "DETECTIONS", d, f.header.utime + 30000);
   }
   health_t h{};
   h.service = "validator";
   h.instance = "0";
   h.frames_in = answered;
-  writeEvent(log, prefix + "NERV_HEALTH", t0 + frames * 100000, encoded(h));
+  appendLcmEvent(log, prefix + "NERV_HEALTH", h, t0 + frames * 100000);
 }
 
 }  // namespace

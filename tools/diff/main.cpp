@@ -9,6 +9,7 @@
 // the compared channels are identical, 1 when they differ, 2 on error.
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -28,6 +29,10 @@
 using namespace nerv;
 
 namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
 
 // channel -> seq -> JSON of the message without timing fields
 using Run = std::map<std::string, std::map<int64_t, std::string>>;
@@ -52,10 +57,8 @@ Run readRun(const std::string& path, const std::set<std::string>& channels) {
   if (!log.good()) throw std::runtime_error("log " + path + " cannot be read");
   Run run;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
-    std::string base;
-    for (const auto& c : channels)
-      if (e->channel.size() >= c.size() && e->channel.compare(e->channel.size() - c.size(), c.size(), c) == 0) base = c;
-    if (base.empty()) continue;
+    if (std::none_of(channels.begin(), channels.end(), [&](const std::string& c) { return endsWith(e->channel, c); }))
+      continue;
     int64_t seq = 0;
     std::string json;
     const bool ok = canonical<detections_t>(*e, seq, json) || canonical<stixels_t>(*e, seq, json) ||
@@ -107,12 +110,8 @@ int main(int argc, char** argv) {
     std::set<std::string> names;
     for (const Run* r : {&a, &b})
       for (const auto& [ch, m] : *r) names.insert(ch);
-    for (const auto& c : channels) {
-      bool held = false;
-      for (const auto& n : names)
-        held = held || (n.size() >= c.size() && n.compare(n.size() - c.size(), c.size(), c) == 0);
-      if (!held) names.insert(c);
-    }
+    for (const auto& c : channels)
+      if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return endsWith(n, c); })) names.insert(c);
     for (const auto& ch : names) {
       const auto& ma = a.count(ch) ? a.at(ch) : std::map<int64_t, std::string>{};
       const auto& mb = b.count(ch) ? b.at(ch) : std::map<int64_t, std::string>{};
